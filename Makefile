@@ -1,0 +1,142 @@
+# Makefile: builds fixray's host programs (rt-float, rt-fixed, rt-cmp) and runs the tests.
+#
+#   make            build/rt-float, build/rt-fixed, build/rt-cmp
+#   make run        set up if needed, render the demo scene headless
+#   make test       set up if needed, build everything and run the test suite
+#   make bench      render frames with both builds side by side and print ms per frame
+#   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
+#
+# Variants (object trees under build/obj/<variant>):
+#   float, fixed          -O2, the programs users run
+#   san-float, san-fixed  -O1 with AddressSanitizer + UBSan and numeric event counting: tests
+
+BUILD := build
+CC ?= cc
+ifeq ($(origin CC),default)
+CC := gcc
+endif
+
+WARN := -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow
+# One libfixmath configuration for the library and its callers: no 112 KB trig caches;
+# overflow detection and rounding stay on.
+FIXMATH_DEFS := -DFIXMATH_NO_CACHE
+FIXMATH_VERSION := 0~20220222
+FIXMATH_TARBALL := $(BUILD)/deps/libfixmath_$(FIXMATH_VERSION).orig.tar.xz
+FIXMATH_DIR := $(BUILD)/deps/libfixmath
+FIXMATH_STAMP := $(FIXMATH_DIR)/.extracted
+FIXMATH_SRCS := fix16.c fix16_sqrt.c fix16_trig.c fix16_exp.c
+
+BASE_CFLAGS := -std=c11 $(WARN) -ffp-contract=off -fno-strict-aliasing -g
+CPPFLAGS := -Ifixed -Isrc -Iplatform -isystem $(FIXMATH_DIR)/libfixmath $(FIXMATH_DEFS)
+OPT := -O2
+SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+# The tracer core: the same sources in every variant.
+CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/noise.c \
+             src/texture.c src/demo.c
+APP_SRCS := src/app.c src/image.c platform/headless.c
+TESTS := test_numeric test_shapes test_noise
+TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
+
+# On x86-64 the fixed core is compiled without access to floating-point registers: any float
+# or double that creeps into it stops the build.
+ifeq ($(shell uname -m),x86_64)
+FIXED_CORE_GUARD := -mgeneral-regs-only
+endif
+
+HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp
+SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
+
+.PHONY: all run test bench clean distclean setup san
+all: $(HOST_PROGS)
+san: $(SAN_PROGS)
+
+# ---- libfixmath: fetched through apt by setup.sh, SHA-256 checked, extracted here ------------
+$(FIXMATH_TARBALL):
+	./setup.sh
+
+$(FIXMATH_STAMP): $(FIXMATH_TARBALL)
+	rm -rf $(FIXMATH_DIR) && mkdir -p $(FIXMATH_DIR)
+	tar -xJf $< -C $(FIXMATH_DIR) --exclude=.git
+	touch $@
+
+# ---- variants ------------------------------------------------------------------------------
+# $(1) variant, $(2) REAL_FIXED, $(3) flags, $(4) extra flags for the core, $(5) FX_COUNT_EVENTS
+define variant
+OBJ_$(1) := $(BUILD)/obj/$(1)
+CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
+APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c)
+FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
+
+$$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $(BASE_CFLAGS) $(3) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+
+$$(OTHER_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $(BASE_CFLAGS) $(3) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+
+# libfixmath is third-party code: the same optimisation and configuration, its own warnings.
+$(BUILD)/obj/$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) -std=c11 $(3) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+
+$(BUILD)/obj/$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $$@ && ar rcs $$@ $$^
+
+-include $$(CORE_OBJS_$(1):.o=.d) $$(OTHER_OBJS_$(1):.o=.d)
+endef
+
+$(eval $(call variant,float,0,$(OPT),,0))
+$(eval $(call variant,fixed,1,$(OPT),$(FIXED_CORE_GUARD),0))
+$(eval $(call variant,san-float,0,$(SAN),,1))
+$(eval $(call variant,san-fixed,1,$(SAN),,1))
+
+LIBS := -lpng -lm
+
+$(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
+	$(CC) $(OPT) -o $@ $^ $(LIBS)
+
+$(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
+	$(CC) $(OPT) -o $@ $^ $(LIBS)
+
+$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o
+	$(CC) $(OPT) -o $@ $^ $(LIBS)
+
+define san_progs
+$(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
+
+$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	$$(CC) $(SAN) -o $$@ $$^ -lcmocka -lm
+endef
+$(eval $(call san_progs,san-float))
+$(eval $(call san_progs,san-fixed))
+
+
+# ---- user commands -------------------------------------------------------------------------
+setup:
+	@./setup.sh
+
+run: setup
+	@$(MAKE) --no-print-directory all
+	@mkdir -p $(BUILD)/out
+	$(BUILD)/rt-fixed render --size 640x480 -o $(BUILD)/out/demo-fixed.png --stats
+	$(BUILD)/rt-float render --size 640x480 -o $(BUILD)/out/demo-float.png --stats
+	$(BUILD)/rt-cmp $(BUILD)/out/demo-fixed.png $(BUILD)/out/demo-float.png
+	@echo "run: the demo frame is in $(BUILD)/out/demo-fixed.png (fixed point) and $(BUILD)/out/demo-float.png (float)"
+
+test: setup
+	@$(MAKE) --no-print-directory all san
+	@tests/run.sh
+
+bench: setup
+	@$(MAKE) --no-print-directory all
+	@tests/bench.sh
+
+clean:
+	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(HOST_PROGS)
+
+distclean:
+	rm -rf $(BUILD)

@@ -1,0 +1,166 @@
+/* real.h: the numeric layer: one scalar type and vector operations, float or fixed at compile time.
+ *
+ * The tracer is written once against this header. REAL_FIXED selects the number system:
+ *   0  float: real, unit and wide are all `float` (real_float.h);
+ *   1  fixed: real is libfixmath's Q16.16 fix16_t, unit is Q2.30 (unit-vector components and
+ *      cosines, with 64-bit products), wide is Q32.32 in 64 bits (squared lengths)
+ *      (real_fixed.h).
+ *
+ * Types:
+ *   real   positions, distances, colours, coefficients        (Q16.16 | float)
+ *   unit   components of unit vectors, cosines, in [-2, 2)      (Q2.30  | float)
+ *   wide   squares of reals: squared lengths, discriminants    (Q32.32 | float)
+ *   vec3   three reals; dir3: three units (a direction, |d| = 1)
+ * Literals: R(1.5) for real, U(0.5) for unit: constant expressions, folded by the compiler.
+ * Comparisons of two values of the same type may use the C operators (<, >, ==) in both
+ * builds; arithmetic goes through the functions so that the fixed build can saturate.
+ *
+ * Fixed-point arithmetic never wraps: a result out of range saturates to +-R_MAX, and a
+ * domain error (square root of a negative, division by zero, normalising a zero vector)
+ * returns a defined value. With FX_COUNT_EVENTS=1 each such event is counted in
+ * fx_event_count[] so that tests can assert none happened.
+ */
+#ifndef FIXRAY_REAL_H
+#define FIXRAY_REAL_H
+
+#include <stdint.h>
+
+#ifndef REAL_FIXED
+#define REAL_FIXED 0
+#endif
+#ifndef FX_COUNT_EVENTS
+#define FX_COUNT_EVENTS 0
+#endif
+#if REAL_FIXED != 0 && REAL_FIXED != 1
+#error "REAL_FIXED must be 0 (float) or 1 (fixed point)"
+#endif
+
+/* Kinds of numeric events (only counted when FX_COUNT_EVENTS=1). */
+enum { FX_EV_OVERFLOW, FX_EV_DOMAIN, FX_EV_COUNT };
+#if FX_COUNT_EVENTS
+extern unsigned long fx_event_count[FX_EV_COUNT];
+/* Resets the event counters to zero. */
+void fx_events_reset(void);
+#define FX_EVENT(k) ((void)++fx_event_count[k])
+#else
+#define FX_EVENT(k) ((void)0)
+#endif
+
+#if REAL_FIXED
+#include <fix16.h>
+typedef fix16_t real; /* Q16.16 */
+typedef int32_t unit; /* Q2.30 */
+typedef int64_t wide; /* Q32.32 */
+#else
+typedef float real;
+typedef float unit;
+typedef float wide;
+#endif
+
+typedef struct vec3 {
+    real x, y, z;
+} vec3;
+
+typedef struct dir3 {
+    unit x, y, z;
+} dir3;
+
+static inline vec3 v3(real x, real y, real z)
+{
+    vec3 v = {x, y, z};
+    return v;
+}
+
+#if REAL_FIXED
+#include "real_fixed.h"
+#else
+#include "real_float.h"
+#endif
+
+/* Limits of the scene, the same in both builds: every coordinate lies within +-R_SCENE_MAX,
+ * so differences of positions stay within 2 * R_SCENE_MAX and squared lengths fit in wide.
+ * R_T_MAX bounds ray distances (longer than any segment inside the scene cube). */
+#define R_SCENE_MAX R(4096.0)
+#define R_T_MAX R(16384.0)
+/* Secondary rays start this far off the surface along the normal: larger than the error of
+ * a hit point in either build (see docs/numerics.md), small against any object. */
+#define R_EPS_OFFSET R(0.001953125)
+/* A ray whose cosine with a plane is below this is treated as parallel to it. */
+#define U_EPS_PARALLEL U(0.0001)
+
+static inline vec3 v3_add(vec3 a, vec3 b)
+{
+    return v3(r_add(a.x, b.x), r_add(a.y, b.y), r_add(a.z, b.z));
+}
+
+static inline vec3 v3_sub(vec3 a, vec3 b)
+{
+    return v3(r_sub(a.x, b.x), r_sub(a.y, b.y), r_sub(a.z, b.z));
+}
+
+static inline vec3 v3_scale(vec3 a, real s)
+{
+    return v3(r_mul(a.x, s), r_mul(a.y, s), r_mul(a.z, s));
+}
+
+/* Component-wise product (colours). */
+static inline vec3 v3_mul(vec3 a, vec3 b)
+{
+    return v3(r_mul(a.x, b.x), r_mul(a.y, b.y), r_mul(a.z, b.z));
+}
+
+/* a + b * s, component-wise. */
+static inline vec3 v3_madd(vec3 a, vec3 b, real s)
+{
+    return v3_add(a, v3_scale(b, s));
+}
+
+/* The point o + d * t on a ray. */
+static inline vec3 v3_along(vec3 o, dir3 d, real t)
+{
+    return v3(r_add(o.x, r_mul_u(t, d.x)), r_add(o.y, r_mul_u(t, d.y)),
+              r_add(o.z, r_mul_u(t, d.z)));
+}
+
+static inline dir3 d3_neg(dir3 d)
+{
+    dir3 n = {u_neg(d.x), u_neg(d.y), u_neg(d.z)};
+    return n;
+}
+
+/* Linear interpolation a + (b - a) * t. */
+static inline real r_lerp(real a, real b, real t)
+{
+    return r_add(a, r_mul(r_sub(b, a), t));
+}
+
+static inline real r_clamp(real x, real lo, real hi)
+{
+    return x < lo ? lo : (x > hi ? hi : x);
+}
+
+static inline real r_min(real a, real b)
+{
+    return a < b ? a : b;
+}
+
+static inline real r_max(real a, real b)
+{
+    return a > b ? a : b;
+}
+
+/* base^n for base in [0, 1] and n >= 1, by repeated squaring (the same steps in both builds). */
+static inline unit u_pow(unit base, unsigned n)
+{
+    unit result = U_ONE;
+    while (n) {
+        if (n & 1u)
+            result = u_mul(result, base);
+        n >>= 1;
+        if (n)
+            base = u_mul(base, base);
+    }
+    return result;
+}
+
+#endif

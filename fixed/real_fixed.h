@@ -1,0 +1,395 @@
+/* real_fixed.h: fixed-point operations of the numeric layer (included by real.h only).
+ *
+ * Scalars are libfixmath's Q16.16; multiply, divide, square root and sine go through
+ * libfixmath. Unit vectors are Q2.30 and every product involving them is formed in 64 bits
+ * and rounded once, so a hit point o + d*t is as exact as its Q16.16 coordinates allow.
+ * Nothing here wraps: out-of-range results saturate to +-R_MAX and count FX_EV_OVERFLOW.
+ * Right shifts of negative values are arithmetic (GCC and Clang define it so).
+ */
+#ifndef FIXRAY_REAL_FIXED_H
+#define FIXRAY_REAL_FIXED_H
+
+#include <fix16.h>
+#include <stdint.h>
+
+#define R(x) ((real)F16(x))
+#define U(x) ((unit)((x) >= 0 ? (x) * 1073741824.0 + 0.5 : (x) * 1073741824.0 - 0.5))
+#define R_ONE ((real)0x00010000)
+#define U_ONE ((unit)0x40000000)
+/* Largest magnitude; -R_MAX is the most negative value produced (never INT32_MIN, which
+ * libfixmath uses as its overflow marker). */
+#define R_MAX ((real)INT32_MAX)
+#define R_PI ((real)205887)
+/* Smallest positive step of each type (used by tests and tolerances). */
+#define R_LSB ((real)1)
+#define U_LSB ((unit)1)
+
+/* Integer square root of a 64-bit value, rounded to nearest. */
+uint32_t fx_isqrt64(uint64_t n);
+/* Unit vector of (x, y, z) given in any common scale; *len receives the length in the same
+ * scale shifted right by `frac` bits less than Q16.16 uses, i.e. for Q16.16 inputs pass
+ * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
+ * and counts FX_EV_DOMAIN. */
+dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
+
+/* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
+ * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
+void u_sincos_deg(real deg, unit *s, unit *c);
+
+/* Saturate a 64-bit integer to the range of real. */
+static inline real fx_sat(int64_t v)
+{
+    if (v > INT32_MAX) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return R_MAX;
+    }
+    if (v < -(int64_t)INT32_MAX) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return -R_MAX;
+    }
+    return (real)v;
+}
+
+/* Round a 64-bit value with `s` fraction bits to an integer (s >= 1), half up. */
+static inline int64_t fx_round_shift(int64_t v, int s)
+{
+    return (v + ((int64_t)1 << (s - 1))) >> s;
+}
+
+/* ---- real: Q16.16 ------------------------------------------------------------------------ */
+
+static inline real r_from_int(int32_t i)
+{
+    return fx_sat((int64_t)i * 65536);
+}
+
+/* Nearest integer (half up). */
+static inline int32_t r_to_int(real a)
+{
+    return (int32_t)(((int64_t)a + 0x8000) >> 16);
+}
+
+/* a * num / den for integers, rounded (den > 0): exact ratios such as pixel offsets. */
+static inline real r_from_ratio(int32_t num, int32_t den)
+{
+    int64_t n = (int64_t)num * 65536;
+    return fx_sat(n >= 0 ? (n + den / 2) / den : -((-n + den / 2) / den));
+}
+
+static inline real r_add(real a, real b)
+{
+    return fx_sat((int64_t)a + b);
+}
+
+static inline real r_sub(real a, real b)
+{
+    return fx_sat((int64_t)a - b);
+}
+
+static inline real r_neg(real a)
+{
+    return fx_sat(-(int64_t)a);
+}
+
+static inline real r_abs(real a)
+{
+    return a < 0 ? r_neg(a) : a;
+}
+
+static inline real r_mul(real a, real b)
+{
+    real p = fix16_mul(a, b);
+    if (p == fix16_overflow) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
+    }
+    return p;
+}
+
+/* a * 2^-n, rounded. */
+static inline real r_shr(real a, int n)
+{
+    return (real)fx_round_shift(a, n);
+}
+
+/* Multiply by a small non-negative integer. */
+static inline real r_muli(real a, int32_t i)
+{
+    return fx_sat((int64_t)a * i);
+}
+
+static inline real r_div(real a, real b)
+{
+    if (b == 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return a == 0 ? 0 : (a < 0 ? -R_MAX : R_MAX);
+    }
+    real q = fix16_div(a, b);
+    if (q == fix16_overflow) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
+    }
+    return q;
+}
+
+static inline real r_sqrt(real a)
+{
+    if (a < 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return 0;
+    }
+    return fix16_sqrt(a);
+}
+
+/* Sine. libfixmath's series is accurate on [-pi/2, pi/2] only, so the angle is reduced to
+ * (-pi, pi] and folded into that interval first. */
+static inline real r_sin(real a)
+{
+    const int32_t two_pi = 2 * R_PI;
+    int32_t x = a % two_pi;
+    if (x > R_PI)
+        x -= two_pi;
+    else if (x <= -R_PI)
+        x += two_pi;
+    if (x > R_PI / 2)
+        x = R_PI - x;
+    else if (x < -R_PI / 2)
+        x = -R_PI - x;
+    return fix16_sin(x);
+}
+
+static inline real r_cos(real a)
+{
+    /* cos a = sin(pi/2 - a), reduced without overflowing for any a */
+    return r_sin(R_PI / 2 - (a % (2 * R_PI)));
+}
+
+/* Split x into floor(x) (returned through *i) and the fraction x - floor(x) in [0, 1). */
+static inline real r_floor_split(real x, int32_t *i)
+{
+    *i = x >> 16;
+    return x & 0xFFFF;
+}
+
+/* x modulo m for m > 0: the result lies in [0, m). */
+static inline real r_mod(real x, real m)
+{
+    int32_t r = x % m;
+    return r < 0 ? r + m : r;
+}
+
+/* real * unit -> real, rounded. */
+static inline real r_mul_u(real a, unit u)
+{
+    return fx_sat(fx_round_shift((int64_t)a * u, 30));
+}
+
+/* real / unit -> real, rounded to nearest. */
+static inline real r_div_u(real a, unit b)
+{
+    if (b == 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return a == 0 ? 0 : (a < 0 ? -R_MAX : R_MAX);
+    }
+    int neg = (a < 0) != (b < 0);
+    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30; /* below 2^61 */
+    uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
+    int64_t q = (int64_t)((n + m / 2) / m);
+    return fx_sat(neg ? -q : q);
+}
+
+/* ---- unit: Q2.30 ------------------------------------------------------------------------- */
+
+static inline unit u_sat(int64_t v)
+{
+    if (v > INT32_MAX) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return INT32_MAX;
+    }
+    if (v < -(int64_t)INT32_MAX) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return -INT32_MAX;
+    }
+    return (unit)v;
+}
+
+static inline unit u_mul(unit a, unit b)
+{
+    return u_sat(fx_round_shift((int64_t)a * b, 30));
+}
+
+static inline unit u_neg(unit a)
+{
+    return u_sat(-(int64_t)a);
+}
+
+static inline unit u_add(unit a, unit b)
+{
+    return u_sat((int64_t)a + b);
+}
+
+/* unit * integer (pixel offsets along the image plane). */
+static inline unit u_muli(unit a, int32_t i)
+{
+    return u_sat((int64_t)a * i);
+}
+
+static inline unit u_from_real(real a)
+{
+    return u_sat((int64_t)a * 16384);
+}
+
+static inline real u_to_real(unit a)
+{
+    return (real)fx_round_shift(a, 14);
+}
+
+/* unit / positive integer, rounded. */
+static inline unit u_divi(unit a, int32_t i)
+{
+    return (unit)(a >= 0 ? (a + i / 2) / i : -((-(int64_t)a + i / 2) / i));
+}
+
+/* a / b for units, rounded; |a / b| must stay below 2. */
+static inline unit u_div(unit a, unit b)
+{
+    if (b == 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return a == 0 ? 0 : (a < 0 ? -INT32_MAX : INT32_MAX);
+    }
+    int64_t n = (int64_t)a * U_ONE;
+    int64_t q = (n >= 0) == (b > 0) ? (n + (b > 0 ? b : -(int64_t)b) / 2) / b
+                                    : (n - (b > 0 ? b : -(int64_t)b) / 2) / b;
+    return u_sat(q);
+}
+
+/* A colour channel as a byte: clamped to [0, 1], scaled to 0..255 and rounded. */
+static inline uint8_t r_to_byte(real c)
+{
+    if (c <= 0)
+        return 0;
+    if (c >= R_ONE)
+        return 255;
+    return (uint8_t)(((uint32_t)c * 255u + 0x8000u) >> 16);
+}
+
+/* ---- wide: Q32.32 ------------------------------------------------------------------------ */
+
+static inline wide w_sq(real a)
+{
+    return (int64_t)a * a;
+}
+
+static inline wide w_add(wide a, wide b)
+{
+    return a + b;
+}
+
+static inline wide w_sub(wide a, wide b)
+{
+    return a - b;
+}
+
+/* Squared length |a|^2. Every vector given here is a difference of scene positions, so each
+ * component is below 2^30 raw and the sum below 3 * 2^60: no overflow. */
+static inline wide w_len2(vec3 a)
+{
+    return (int64_t)a.x * a.x + (int64_t)a.y * a.y + (int64_t)a.z * a.z;
+}
+
+/* sqrt of a Q32.32 value is a Q16.16 value: the integer square root does it exactly. */
+static inline real r_sqrt_w(wide a)
+{
+    if (a < 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return 0;
+    }
+    return fx_sat(fx_isqrt64((uint64_t)a));
+}
+
+/* sqrt(a^2 + b^2) without overflow for any a, b (saturates only when the result does). */
+static inline real r_hypot(real a, real b)
+{
+    return fx_sat(fx_isqrt64((uint64_t)((int64_t)a * a) + (uint64_t)((int64_t)b * b)));
+}
+
+/* ---- vectors ----------------------------------------------------------------------------- */
+
+/* v . d for a position-like v and a unit d: |v . d| <= |v|. Each product is below 2^61. */
+static inline real v3_dot_d(vec3 v, dir3 d)
+{
+    int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
+    return fx_sat(fx_round_shift(s, 30));
+}
+
+static inline unit d3_dot(dir3 a, dir3 b)
+{
+    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    return u_sat(fx_round_shift(s, 30));
+}
+
+/* d * s as a vector of reals. */
+static inline vec3 d3_scale(dir3 d, real s)
+{
+    return v3(r_mul_u(s, d.x), r_mul_u(s, d.y), r_mul_u(s, d.z));
+}
+
+/* The unit vector along v; its length goes to *len when len is not NULL. */
+static inline dir3 d3_norm(vec3 v, real *len)
+{
+    return fx_norm64(v.x, v.y, v.z, 16, len);
+}
+
+/* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
+ * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 so
+ * that any field of view with step*|ia| and step*|ib| below 8 fits. */
+static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)
+{
+    int64_t a = ((int64_t)step * ia) >> 2, b = ((int64_t)step * ib) >> 2;
+    int64_t x = (int64_t)f.x * (1 << 28) + r.x * a + u.x * b;
+    int64_t y = (int64_t)f.y * (1 << 28) + r.y * a + u.y * b;
+    int64_t z = (int64_t)f.z * (1 << 28) + r.z * a + u.z * b;
+    return fx_norm64(x, y, z, 58, 0);
+}
+
+/* Unit vector along a x b; *len (may be NULL) gets |a x b| = sin of the angle. */
+static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
+{
+    int64_t x = (int64_t)a.y * b.z - (int64_t)a.z * b.y;
+    int64_t y = (int64_t)a.z * b.x - (int64_t)a.x * b.z;
+    int64_t z = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
+    return fx_norm64(x, y, z, 60, len);
+}
+
+/* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */
+static inline dir3 d3_reflect(dir3 d, dir3 n)
+{
+    int64_t k = fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z, 30);
+    int64_t x = (int64_t)d.x * U_ONE - 2 * k * n.x;
+    int64_t y = (int64_t)d.y * U_ONE - 2 * k * n.y;
+    int64_t z = (int64_t)d.z * U_ONE - 2 * k * n.z;
+    return fx_norm64(x, y, z, 60, 0);
+}
+
+/* Refraction of d through a surface with normal n facing the incoming ray (d.n <= 0), with
+ * eta = n1 / n2 in (0, 3]. Returns 0 on total internal reflection, else 1 and *out. */
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    int64_t cosi = -fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z,
+                                   30); /* Q2.30 */
+    int64_t eta2 = ((int64_t)eta * eta) >> 2;             /* Q.30, at most 9 * 2^30 */
+    int64_t sin2 = U_ONE - ((cosi * cosi) >> 30);          /* Q.30 in [0, 1] */
+    int64_t k = U_ONE - ((eta2 * (sin2 >> 2)) >> 28);      /* product below 2^62 */
+    if (k < 0)
+        return 0;
+    int64_t cost = fx_isqrt64((uint64_t)k << 30);         /* Q2.30 */
+    int64_t m = (((int64_t)eta * cosi) >> 16) - cost;      /* Q.30, |m| < 2^33 */
+    int64_t e = (int64_t)eta * 16384;                      /* eta in Q.30 */
+    int64_t x = e * d.x + m * n.x; /* Q.60: below 3 * 2^60 + 4 * 2^60 for eta <= 3 */
+    int64_t y = e * d.y + m * n.y;
+    int64_t z = e * d.z + m * n.z;
+    *out = fx_norm64(x, y, z, 60, 0);
+    return 1;
+}
+
+#endif

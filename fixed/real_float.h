@@ -1,0 +1,284 @@
+/* real_float.h: float operations of the numeric layer (included by real.h only).
+ *
+ * The same functions as real_fixed.h with plain IEEE single precision; the tracer cannot tell
+ * the two apart. Build with -ffp-contract=off so that no fused multiply-add changes results
+ * between machines.
+ */
+#ifndef FIXRAY_REAL_FLOAT_H
+#define FIXRAY_REAL_FLOAT_H
+
+#include <math.h>
+#include <stdint.h>
+
+#define R(x) ((real)(x))
+#define U(x) ((unit)(x))
+#define R_ONE 1.0f
+#define U_ONE 1.0f
+/* The largest meaningful magnitude, the same as the fixed build's range. */
+#define R_MAX 32767.99998f
+#define R_PI 3.14159265f
+#define R_LSB 1.1920929e-7f
+#define U_LSB 1.1920929e-7f
+
+/* ---- real -------------------------------------------------------------------------------- */
+
+static inline real r_from_int(int32_t i)
+{
+    return (real)i;
+}
+
+static inline int32_t r_to_int(real a)
+{
+    return (int32_t)floorf(a + 0.5f);
+}
+
+static inline real r_from_ratio(int32_t num, int32_t den)
+{
+    return (real)num / (real)den;
+}
+
+static inline real r_add(real a, real b)
+{
+    return a + b;
+}
+
+static inline real r_sub(real a, real b)
+{
+    return a - b;
+}
+
+static inline real r_neg(real a)
+{
+    return -a;
+}
+
+static inline real r_abs(real a)
+{
+    return fabsf(a);
+}
+
+static inline real r_mul(real a, real b)
+{
+    return a * b;
+}
+
+static inline real r_shr(real a, int n)
+{
+    return ldexpf(a, -n);
+}
+
+static inline real r_muli(real a, int32_t i)
+{
+    return a * (real)i;
+}
+
+static inline real r_div(real a, real b)
+{
+    if (b == 0.0f) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return a == 0.0f ? 0.0f : (a < 0.0f ? -R_MAX : R_MAX);
+    }
+    return a / b;
+}
+
+static inline real r_sqrt(real a)
+{
+    if (a < 0.0f) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return 0.0f;
+    }
+    return sqrtf(a);
+}
+
+static inline real r_sin(real a)
+{
+    return sinf(a);
+}
+
+static inline real r_cos(real a)
+{
+    return cosf(a);
+}
+
+static inline real r_floor_split(real x, int32_t *i)
+{
+    real f = floorf(x);
+    *i = (int32_t)f;
+    return x - f;
+}
+
+static inline real r_mod(real x, real m)
+{
+    real r = fmodf(x, m);
+    return r < 0.0f ? r + m : r;
+}
+
+static inline real r_mul_u(real a, unit u)
+{
+    return a * u;
+}
+
+static inline real r_div_u(real a, unit b)
+{
+    return r_div(a, b);
+}
+
+/* ---- unit -------------------------------------------------------------------------------- */
+
+static inline unit u_mul(unit a, unit b)
+{
+    return a * b;
+}
+
+static inline unit u_neg(unit a)
+{
+    return -a;
+}
+
+static inline unit u_add(unit a, unit b)
+{
+    return a + b;
+}
+
+static inline unit u_muli(unit a, int32_t i)
+{
+    return a * (unit)i;
+}
+
+static inline unit u_from_real(real a)
+{
+    return a;
+}
+
+static inline real u_to_real(unit a)
+{
+    return a;
+}
+
+static inline unit u_divi(unit a, int32_t i)
+{
+    return a / (float)i;
+}
+
+static inline unit u_div(unit a, unit b)
+{
+    return r_div(a, b);
+}
+
+static inline void u_sincos_deg(real deg, unit *s, unit *c)
+{
+    float rad = fmodf(deg, 360.0f) * (R_PI / 180.0f);
+    *s = sinf(rad);
+    *c = cosf(rad);
+}
+
+static inline uint8_t r_to_byte(real c)
+{
+    if (c <= 0.0f)
+        return 0;
+    if (c >= 1.0f)
+        return 255;
+    return (uint8_t)(c * 255.0f + 0.5f);
+}
+
+/* ---- wide -------------------------------------------------------------------------------- */
+
+static inline wide w_sq(real a)
+{
+    return a * a;
+}
+
+static inline wide w_add(wide a, wide b)
+{
+    return a + b;
+}
+
+static inline wide w_sub(wide a, wide b)
+{
+    return a - b;
+}
+
+static inline wide w_len2(vec3 a)
+{
+    return a.x * a.x + a.y * a.y + a.z * a.z;
+}
+
+static inline real r_sqrt_w(wide a)
+{
+    return r_sqrt(a);
+}
+
+static inline real r_hypot(real a, real b)
+{
+    return sqrtf(a * a + b * b);
+}
+
+/* ---- vectors ----------------------------------------------------------------------------- */
+
+static inline real v3_dot_d(vec3 v, dir3 d)
+{
+    return v.x * d.x + v.y * d.y + v.z * d.z;
+}
+
+static inline unit d3_dot(dir3 a, dir3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+static inline vec3 d3_scale(dir3 d, real s)
+{
+    vec3 v = {d.x * s, d.y * s, d.z * s};
+    return v;
+}
+
+static inline dir3 fl_norm(float x, float y, float z, real *len)
+{
+    float l = sqrtf(x * x + y * y + z * z);
+    dir3 d = {0.0f, 0.0f, 0.0f};
+    if (len)
+        *len = l;
+    if (l == 0.0f) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return d;
+    }
+    float inv = 1.0f / l;
+    d.x = x * inv;
+    d.y = y * inv;
+    d.z = z * inv;
+    return d;
+}
+
+static inline dir3 d3_norm(vec3 v, real *len)
+{
+    return fl_norm(v.x, v.y, v.z, len);
+}
+
+static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)
+{
+    float a = step * (float)ia, b = step * (float)ib;
+    return fl_norm(f.x + r.x * a + u.x * b, f.y + r.y * a + u.y * b, f.z + r.z * a + u.z * b, 0);
+}
+
+static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
+{
+    return fl_norm(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x, len);
+}
+
+static inline dir3 d3_reflect(dir3 d, dir3 n)
+{
+    float k = 2.0f * d3_dot(d, n);
+    return fl_norm(d.x - k * n.x, d.y - k * n.y, d.z - k * n.z, 0);
+}
+
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    float cosi = -d3_dot(d, n);
+    float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
+    if (k < 0.0f)
+        return 0;
+    float m = eta * cosi - sqrtf(k);
+    *out = fl_norm(eta * d.x + m * n.x, eta * d.y + m * n.y, eta * d.z + m * n.z, 0);
+    return 1;
+}
+
+#endif

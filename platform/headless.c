@@ -1,0 +1,49 @@
+/* headless.c: the headless backend: frames go to image files, time from the monotonic clock. */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "image.h"
+#include "platform.h"
+
+int plat_frame_acquire(plat_frame *f, int width, int height)
+{
+    f->pixels = calloc((size_t)width * (size_t)height, sizeof *f->pixels);
+    if (!f->pixels) {
+        fprintf(stderr, "error: out of memory for a %dx%d frame\n", width, height);
+        return -1;
+    }
+    f->width = width;
+    f->height = height;
+    f->stride = width;
+    return 0;
+}
+
+void plat_frame_release(plat_frame *f)
+{
+    free(f->pixels);
+    f->pixels = NULL;
+}
+
+int plat_frame_present(const plat_frame *f, const char *dest)
+{
+    char err[512];
+    if (img_save(dest, f->pixels, f->width, f->height, f->stride, err, sizeof err) != 0) {
+        fprintf(stderr, "error: %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+uint64_t plat_time_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+int main(int argc, char **argv)
+{
+    return app_main(argc, argv);
+}

@@ -1,0 +1,233 @@
+/* app.c: the command line of rt-float and rt-fixed: parses options and runs the render command. */
+#include <stdio.h>
+#include <string.h>
+
+#include "image.h"
+#include "platform.h"
+#include "rt.h"
+
+#if REAL_FIXED
+#define APP_REAL "fixed"
+#else
+#define APP_REAL "float"
+#endif
+
+#define APP_FPS 25
+#define APP_MAX_SIDE 4096
+#define APP_MAX_TIME_MS (3600 * 1000)
+
+static const char *app_name = "rt";
+
+typedef struct app_opts {
+    const char *output;
+    int width, height;
+    int32_t time_ms;
+    int have_time, have_frame;
+    int depth; /* -1: the scene's */
+    int stats;
+} app_opts;
+
+static void app_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: %s render [options]     render one frame of the demo scene to an image file\n"
+            "  -o, --output FILE   output image, .png or .ppm (default frame.png)\n"
+            "  --size WxH          image size, each side 1..%d (default 320x240)\n"
+            "  --time SECONDS      moment of the animation, e.g. 2.5 (default 0)\n"
+            "  --frame N           frame N at %d frames per second (instead of --time)\n"
+            "  --depth N           recursion limit 0..%d (default: the scene's)\n"
+            "  --stats             print key=value statistics on standard output\n"
+            "       %s --help\n"
+            "Number system of this build: %s.\n",
+            app_name, APP_MAX_SIDE, APP_FPS, RT_MAX_DEPTH, app_name, APP_REAL);
+}
+
+static int app_error(const char *option, const char *what, const char *value)
+{
+    if (value)
+        fprintf(stderr, "%s: %s: %s, got '%s' (see %s --help)\n", app_name, option, what, value,
+                app_name);
+    else
+        fprintf(stderr, "%s: %s: %s (see %s --help)\n", app_name, option, what, app_name);
+    return 2;
+}
+
+/* Parses a decimal integer in [lo, hi] that fills the whole of s up to `end` (or NUL). */
+static int app_parse_int(const char *s, const char **end, long lo, long hi, long *out)
+{
+    long v = 0;
+    const char *p = s;
+    if (*p < '0' || *p > '9')
+        return -1;
+    while (*p >= '0' && *p <= '9') {
+        v = v * 10 + (*p - '0');
+        if (v > hi)
+            return -1;
+        p++;
+    }
+    if (v < lo)
+        return -1;
+    if (end)
+        *end = p;
+    else if (*p)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* Seconds with at most three decimals, as milliseconds: no floating point involved. */
+static int app_parse_time(const char *s, int32_t *ms)
+{
+    const char *p;
+    long whole, frac = 0;
+    if (app_parse_int(s, &p, 0, APP_MAX_TIME_MS / 1000, &whole) != 0)
+        return -1;
+    if (*p == '.') {
+        int digits = 0;
+        p++;
+        while (*p >= '0' && *p <= '9' && digits < 3) {
+            frac = frac * 10 + (*p - '0');
+            digits++;
+            p++;
+        }
+        if (digits == 0 || *p)
+            return -1;
+        while (digits++ < 3)
+            frac *= 10;
+    } else if (*p) {
+        return -1;
+    }
+    long total = whole * 1000 + frac;
+    if (total > APP_MAX_TIME_MS)
+        return -1;
+    *ms = (int32_t)total;
+    return 0;
+}
+
+static int app_parse_size(const char *s, int *w, int *h)
+{
+    const char *p;
+    long a, b;
+    if (app_parse_int(s, &p, 1, APP_MAX_SIDE, &a) != 0 || (*p != 'x' && *p != 'X'))
+        return -1;
+    if (app_parse_int(p + 1, NULL, 1, APP_MAX_SIDE, &b) != 0)
+        return -1;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+static int app_parse_render(int argc, char **argv, app_opts *o)
+{
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes_value = strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
+                          strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
+                          strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0;
+        if (takes_value && !v)
+            return app_error(a, "needs a value", NULL);
+        if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
+            o->output = v;
+        } else if (strcmp(a, "--size") == 0) {
+            if (app_parse_size(v, &o->width, &o->height) != 0)
+                return app_error(a, "expected WxH with W and H in 1..4096", v);
+        } else if (strcmp(a, "--time") == 0) {
+            if (app_parse_time(v, &o->time_ms) != 0)
+                return app_error(a, "expected seconds in 0..3600 with at most 3 decimals", v);
+            o->have_time = 1;
+        } else if (strcmp(a, "--frame") == 0) {
+            long n;
+            if (app_parse_int(v, NULL, 0, (long)APP_MAX_TIME_MS / 1000 * APP_FPS, &n) != 0)
+                return app_error(a, "expected a frame number in 0..90000", v);
+            o->time_ms = (int32_t)(n * 1000 / APP_FPS);
+            o->have_frame = 1;
+        } else if (strcmp(a, "--depth") == 0) {
+            long n;
+            if (app_parse_int(v, NULL, 0, RT_MAX_DEPTH, &n) != 0)
+                return app_error(a, "expected a recursion limit in 0..8", v);
+            o->depth = (int)n;
+        } else if (strcmp(a, "--stats") == 0) {
+            o->stats = 1;
+            continue;
+        } else {
+            return app_error(a, "unknown option", NULL);
+        }
+        i++; /* the value */
+    }
+    if (o->have_time && o->have_frame)
+        return app_error("--time", "give either --time or --frame, not both", NULL);
+    if (!o->output)
+        o->output = "frame.png";
+    return 0;
+}
+
+static int app_render(int argc, char **argv)
+{
+    app_opts o = {.width = 320, .height = 240, .depth = -1};
+    int rc = app_parse_render(argc, argv, &o);
+    if (rc != 0)
+        return rc;
+    if (!img_path_ok(o.output))
+        return app_error("-o", "the output must end in .png or .ppm", o.output);
+
+    static rt_scene scene;
+    rt_demo_scene(&scene, o.time_ms);
+    int depth = o.depth >= 0 ? o.depth : scene.depth;
+    rt_view view;
+    rt_view_init(&view, &scene.camera, o.width, o.height);
+
+    plat_frame frame;
+    if (plat_frame_acquire(&frame, o.width, o.height) != 0)
+        return 1;
+    rt_stats stats = {0};
+#if FX_COUNT_EVENTS
+    fx_events_reset();
+#endif
+    uint64_t t0 = plat_time_us();
+    rt_render_full(&scene, &view, depth, frame.pixels, frame.width, frame.height, frame.stride,
+                   &stats);
+    uint64_t us = plat_time_us() - t0;
+    rc = plat_frame_present(&frame, o.output) == 0 ? 0 : 1;
+    plat_frame_release(&frame);
+    if (rc != 0)
+        return rc;
+
+    if (o.stats) {
+        printf("real=%s\nsize=%dx%d\ntime_ms=%ld\ndepth=%d\n", APP_REAL, o.width, o.height,
+               (long)o.time_ms, depth);
+        printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000),
+               (unsigned long long)(us % 1000));
+        printf("pixels=%ld\n", (long)o.width * o.height);
+        printf("rays_primary=%lu\nrays_shadow=%lu\nrays_reflect=%lu\nrays_refract=%lu\n",
+               (unsigned long)stats.rays_primary, (unsigned long)stats.rays_shadow,
+               (unsigned long)stats.rays_reflect, (unsigned long)stats.rays_refract);
+#if FX_COUNT_EVENTS
+        printf("fx_overflow=%lu\nfx_domain=%lu\n", fx_event_count[FX_EV_OVERFLOW],
+               fx_event_count[FX_EV_DOMAIN]);
+#endif
+    }
+    fprintf(stderr, "%s: wrote %s (%dx%d, %s)\n", app_name, o.output, o.width, o.height, APP_REAL);
+    return 0;
+}
+
+int app_main(int argc, char **argv)
+{
+    if (argc > 0 && argv[0][0]) {
+        const char *slash = strrchr(argv[0], '/');
+        app_name = slash ? slash + 1 : argv[0];
+    }
+    if (argc < 2) {
+        app_usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        app_usage(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "render") == 0)
+        return app_render(argc - 2, argv + 2);
+    fprintf(stderr, "%s: unknown command '%s' (commands: render; see %s --help)\n", app_name,
+            argv[1], app_name);
+    return 2;
+}

@@ -1,0 +1,166 @@
+/* rt.h: the ray tracer core: scene description, per-sample record and tracing entry points.
+ *
+ * Whitted ray tracing as in the thesis: nearest hit, hard shadows from point lights, Phong
+ * shading, reflection and refraction up to a depth limit, procedural textures. The core
+ * never allocates, sleeps or polls; every buffer is handed in by the caller. The same source
+ * builds in float and in fixed point through fixed/real.h.
+ */
+#ifndef FIXRAY_RT_H
+#define FIXRAY_RT_H
+
+#include <stdint.h>
+
+#include "real.h"
+
+#define RT_MAX_OBJECTS 32
+#define RT_MAX_LIGHTS 4
+#define RT_MAX_MATERIALS 16
+#define RT_MAX_DEPTH 8
+/* Nodes of the ray tree recorded per sample (primary hit first, then secondary hits in
+ * depth-first order, refraction before reflection). */
+#define RT_SAMPLE_MAX_HITS 16
+/* Object id recorded for a ray that leaves the scene. */
+#define RT_NO_OBJECT 0xFF
+/* A light's state becomes 2 (highlight) when its specular term exceeds this. */
+#define RT_HIGHLIGHT_MIN R(0.125)
+
+typedef vec3 rt_color;
+
+enum rt_texture_kind {
+    RT_TEX_NONE,    /* plain diffuse colour */
+    RT_TEX_CHECKER, /* 3D checkerboard of diffuse and color2 */
+    RT_TEX_MARBLE,  /* sine veins disturbed by turbulence, through a palette */
+    RT_TEX_WOOD,    /* rings around the y axis disturbed by noise, through a palette */
+    RT_TEX_NOISE,   /* fBm noise straight through a palette */
+    RT_TEX_COUNT
+};
+
+enum rt_palette_id { RT_PAL_MARBLE, RT_PAL_WOOD, RT_PAL_LAVA, RT_PAL_SKY, RT_PAL_COUNT };
+
+typedef struct rt_texture {
+    uint8_t kind;       /* enum rt_texture_kind */
+    uint8_t palette;    /* enum rt_palette_id */
+    uint8_t octaves;    /* noise octaves, 1..RT_NOISE_MAX_OCTAVES */
+    real scale;         /* texture features per scene unit */
+    real turbulence;    /* strength of the noise disturbance */
+    rt_color color2;    /* second colour of the checkerboard */
+} rt_texture;
+
+typedef struct rt_material {
+    rt_color diffuse;   /* r_d: diffuse colour (unless textured) */
+    rt_texture tex;
+    real ambient;       /* r_a: share of the ambient light reflected */
+    real specular;      /* r_s in [0, 1] */
+    uint16_t shininess; /* h >= 1: highlight exponent */
+    real reflect;       /* weight of the mirror ray, [0, 1] */
+    real transmit;      /* weight of the refracted ray, [0, 1] */
+    real ior;           /* index of refraction (inside / outside), in [1, 3] */
+    real ior_inv;       /* 1 / ior, kept so that no ray divides */
+} rt_material;
+
+enum rt_shape_kind { RT_SPHERE, RT_PLANE, RT_SHAPE_COUNT };
+
+typedef struct rt_object {
+    uint8_t kind;     /* enum rt_shape_kind */
+    uint8_t material; /* index into rt_scene.materials */
+    vec3 center;      /* sphere */
+    real radius;
+    wide radius2;
+    vec3 axis;        /* plane: normal as given (any length) */
+    real offset;      /* plane: points p with p . unit(axis) = offset */
+    dir3 normal;      /* plane: unit(axis), filled by rt_scene_prepare */
+} rt_object;
+
+typedef struct rt_light {
+    vec3 pos;
+    rt_color color;
+} rt_light;
+
+typedef struct rt_camera {
+    vec3 eye, at, up;
+    real fov; /* vertical field of view, degrees, in [10, 120] */
+} rt_camera;
+
+typedef struct rt_scene {
+    rt_color background;
+    rt_color ambient;
+    int depth; /* recursion limit of the scene */
+    int nobjects, nlights, nmaterials;
+    rt_object objects[RT_MAX_OBJECTS];
+    rt_light lights[RT_MAX_LIGHTS];
+    rt_material materials[RT_MAX_MATERIALS];
+    rt_camera camera;
+} rt_scene;
+
+/* The camera prepared for one image size: primary ray of pixel (x, y) is
+ * eye + t * unit(fwd + right * step*(2x+1-w) + up * step*(h-2y-1)). */
+typedef struct rt_view {
+    vec3 eye;
+    dir3 fwd, right, up;
+    unit step; /* tan(fov/2) / height */
+    int width, height;
+} rt_view;
+
+/* One node of the ray tree as adaptive subsampling compares it. */
+typedef struct rt_hit_rec {
+    uint8_t object; /* object index, or RT_NO_OBJECT */
+    uint8_t level;  /* recursion level, 0 = primary */
+    rt_color contrib; /* this node's local colour times its weight in the pixel */
+} rt_hit_rec;
+
+/* Everything traced for one image point. */
+typedef struct rt_sample {
+    rt_color color;
+    uint8_t nhits;
+    uint8_t light_state[RT_MAX_LIGHTS]; /* at the primary hit: 0 unlit, 1 lit, 2 highlight */
+    rt_hit_rec hits[RT_SAMPLE_MAX_HITS];
+} rt_sample;
+
+typedef struct rt_stats {
+    uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
+} rt_stats;
+
+/* Per-type interface: every shape is intersected and shaded through this table. */
+typedef struct rt_shape_ops {
+    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. */
+    int (*intersect)(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
+    /* Outward unit normal at a point p on the surface. */
+    dir3 (*normal)(const rt_object *o, vec3 p);
+} rt_shape_ops;
+
+extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
+
+/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv). */
+void rt_scene_prepare(rt_scene *s);
+
+/* Sets up the primary-ray frame for an image of width x height pixels. */
+void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
+
+/* Direction of the primary ray through the centre of pixel (x, y). */
+dir3 rt_view_ray(const rt_view *v, int x, int y);
+
+/* Traces the primary ray through pixel (x, y) with at most `depth` bounces; fills *out and
+ * adds the rays cast to *stats. */
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, int x, int y, int depth, rt_stats *stats,
+                    rt_sample *out);
+
+/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
+
+/* Renders every pixel into `pixels` (0x00RRGGBB, `stride` pixels per row). */
+void rt_render_full(const rt_scene *s, const rt_view *v, int depth, uint32_t *pixels, int width,
+                    int height, int stride, rt_stats *stats);
+
+/* A colour as a 0x00RRGGBB pixel: each channel clamped to [0, 1] and rounded to 8 bits. */
+uint32_t rt_color_pixel(rt_color c);
+
+/* The diffuse colour of material m at the scene point p (its texture, if any). */
+rt_color rt_texture_color(const rt_material *m, vec3 p);
+
+/* The built-in demo scene at the given time: a camera orbit around a few objects that use
+ * every effect. Prepared (rt_scene_prepare) on return. */
+void rt_demo_scene(rt_scene *s, int32_t time_ms);
+/* Duration of one orbit of the demo camera. */
+#define RT_DEMO_PERIOD_MS 24000
+
+#endif

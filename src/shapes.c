@@ -1,0 +1,65 @@
+/* shapes.c: the per-type interface: ray intersection and surface normal of spheres and planes. */
+#include "rt.h"
+
+/* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
+ * discriminant r^2 - |perp|^2 accurate in Q32.32 even far from the origin (where
+ * |L|^2 - tca^2 would cancel). */
+static int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    vec3 l = v3_sub(o->center, org);
+    real tca = v3_dot_d(l, d);
+    /* Cheap miss test: the sphere lies behind an origin that is outside it. */
+    if (tca < 0 && w_len2(l) > o->radius2)
+        return 0;
+    vec3 perp = v3_sub(l, d3_scale(d, tca));
+    wide d2 = w_len2(perp);
+    if (d2 > o->radius2)
+        return 0;
+    real thc = r_sqrt_w(w_sub(o->radius2, d2));
+    real hit = r_sub(tca, thc);
+    if (hit <= 0) {
+        hit = r_add(tca, thc); /* the origin is inside: take the far side */
+        if (hit <= 0)
+            return 0;
+    }
+    if (hit >= tmax)
+        return 0;
+    *t = hit;
+    return 1;
+}
+
+static dir3 sphere_normal(const rt_object *o, vec3 p)
+{
+    return d3_norm(v3_sub(p, o->center), 0);
+}
+
+static int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    unit den = d3_dot(d, o->normal);
+    if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
+        return 0; /* parallel, or so nearly that the hit lies beyond any scene */
+    real num = r_sub(o->offset, v3_dot_d(org, o->normal)); /* signed distance to the plane */
+    if (num == 0 || (num > 0) != (den > 0))
+        return 0; /* behind the origin */
+    if (den < 0) {
+        den = u_neg(den);
+        num = r_neg(num);
+    }
+    /* t = num / den < tmax exactly when num < tmax * den: test before dividing, so the
+     * quotient never overflows. */
+    if (num >= r_mul_u(tmax, den))
+        return 0;
+    *t = r_div_u(num, den);
+    return 1;
+}
+
+static dir3 plane_normal(const rt_object *o, vec3 p)
+{
+    (void)p;
+    return o->normal;
+}
+
+const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
+    [RT_SPHERE] = {sphere_intersect, sphere_normal},
+    [RT_PLANE] = {plane_intersect, plane_normal},
+};

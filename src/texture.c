@@ -1,0 +1,40 @@
+/* texture.c: procedural textures: the diffuse colour of a material at a point in space. */
+#include "noise.h"
+#include "rt.h"
+
+rt_color rt_texture_color(const rt_material *m, vec3 p)
+{
+    const rt_texture *tx = &m->tex;
+    if (tx->kind == RT_TEX_NONE)
+        return m->diffuse;
+
+    vec3 q = v3_scale(p, tx->scale);
+    switch (tx->kind) {
+    case RT_TEX_CHECKER: {
+        /* Cells are centred on lattice points, so the faces of cells lie at half-integers and
+         * a plane through the origin never sits on a boundary. */
+        int32_t i, j, k;
+        r_floor_split(r_add(q.x, R(0.5)), &i);
+        r_floor_split(r_add(q.y, R(0.5)), &j);
+        r_floor_split(r_add(q.z, R(0.5)), &k);
+        return ((i + j + k) & 1) ? tx->color2 : m->diffuse;
+    }
+    case RT_TEX_MARBLE: {
+        /* Veins: a sine across x and y whose phase is pushed around by turbulence. */
+        real phase = r_add(r_add(q.x, r_shr(q.y, 1)),
+                           r_mul(tx->turbulence, rt_turbulence(q, tx->octaves)));
+        real s = r_sin(r_mul(phase, R_PI));
+        return rt_palette(tx->palette, r_add(R(0.5), r_shr(s, 1)));
+    }
+    case RT_TEX_WOOD: {
+        /* Rings around the y axis, made irregular by noise. */
+        real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm(q, tx->octaves)));
+        return rt_palette(tx->palette, r_mod(ring, R_ONE));
+    }
+    case RT_TEX_NOISE:
+    default: {
+        real n = rt_fbm(q, tx->octaves);
+        return rt_palette(tx->palette, r_add(R(0.5), r_shr(n, 1)));
+    }
+    }
+}

@@ -1,0 +1,118 @@
+/* cmp.c: rt-cmp: compares two images of equal size and reports PSNR and pixel differences. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image.h"
+
+/* Each channel of the difference picture is |a - b| times this, clamped to 255. */
+#define CMP_DIFF_GAIN 16
+
+static int cmp_usage(FILE *f)
+{
+    fprintf(f, "usage: rt-cmp A B [--diff D.png]\n"
+               "Compares two images of equal size (PNG or PPM) and prints one line:\n"
+               "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
+               "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
+               "more than 8).\n",
+            CMP_DIFF_GAIN);
+    return f == stdout ? 0 : 2;
+}
+
+int main(int argc, char **argv)
+{
+    const char *path[2] = {NULL, NULL}, *diff = NULL;
+    int npath = 0;
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return cmp_usage(stdout);
+        if (strcmp(argv[i], "--diff") == 0) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "rt-cmp: --diff needs a file name\n");
+                return 2;
+            }
+            diff = argv[++i];
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            fprintf(stderr, "rt-cmp: unknown option '%s' (see rt-cmp --help)\n", argv[i]);
+            return 2;
+        } else if (npath < 2) {
+            path[npath++] = argv[i];
+        } else {
+            fprintf(stderr, "rt-cmp: too many files: '%s' (compare two images)\n", argv[i]);
+            return 2;
+        }
+    }
+    if (npath != 2)
+        return cmp_usage(stderr);
+    if (diff && !img_path_ok(diff)) {
+        fprintf(stderr, "rt-cmp: %s: the difference picture must end in .png or .ppm\n", diff);
+        return 2;
+    }
+
+    img_rgb a, b;
+    char err[512];
+    if (img_load(path[0], &a, err, sizeof err) != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        return 2;
+    }
+    if (img_load(path[1], &b, err, sizeof err) != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        img_free(&a);
+        return 2;
+    }
+    if (a.width != b.width || a.height != b.height) {
+        fprintf(stderr, "rt-cmp: sizes differ: %s is %dx%d, %s is %dx%d\n", path[0], a.width,
+                a.height, path[1], b.width, b.height);
+        img_free(&a);
+        img_free(&b);
+        return 2;
+    }
+
+    long pixels = (long)a.width * a.height, differing = 0, over8 = 0;
+    int max_abs = 0;
+    double sse = 0;
+    uint32_t *dpix = diff ? malloc((size_t)pixels * sizeof *dpix) : NULL;
+    if (diff && !dpix) {
+        fprintf(stderr, "rt-cmp: out of memory\n");
+        return 2;
+    }
+    for (long i = 0; i < pixels; i++) {
+        int worst = 0;
+        uint32_t dp = 0;
+        for (int c = 0; c < 3; c++) {
+            int d = abs((int)a.rgb[3 * i + c] - (int)b.rgb[3 * i + c]);
+            sse += (double)d * d;
+            if (d > worst)
+                worst = d;
+            int g = d * CMP_DIFF_GAIN > 255 ? 255 : d * CMP_DIFF_GAIN;
+            dp |= (uint32_t)g << (16 - 8 * c);
+        }
+        if (worst > max_abs)
+            max_abs = worst;
+        differing += worst > 0;
+        over8 += worst > 8;
+        if (dpix)
+            dpix[i] = worst > 8 ? 0xFF0000u : dp;
+    }
+    int width = a.width, height = a.height;
+    img_free(&a);
+    img_free(&b);
+
+    double mse = sse / (3.0 * (double)pixels);
+    if (mse == 0)
+        printf("psnr_db=inf");
+    else
+        printf("psnr_db=%.2f", 10.0 * log10(255.0 * 255.0 / mse));
+    printf(" max_abs=%d differing=%ld over8=%ld pixels=%ld\n", max_abs, differing, over8, pixels);
+
+    int rc = 0;
+    if (dpix) {
+        if (img_save(diff, dpix, width, height, width, err, sizeof err) != 0) {
+            fprintf(stderr, "rt-cmp: %s\n", err);
+            rc = 2;
+        }
+        free(dpix);
+    }
+    return rc;
+}

@@ -1,0 +1,135 @@
+/* trace.c: Whitted ray tracing: nearest hit, hard shadows, Phong shading, reflection, refraction. */
+#include "rt.h"
+
+/* State of one traced image point, threaded through the recursion. */
+typedef struct trace_ctx {
+    const rt_scene *scene;
+    rt_stats *stats;
+    rt_sample *sample;
+} trace_ctx;
+
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    int best = -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        real hit;
+        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
+/* Does anything block the segment from org along d of length dist? */
+static int trace_occluded(const rt_scene *s, vec3 org, dir3 d, real dist)
+{
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        real hit;
+        if (rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
+            return 1;
+    }
+    return 0;
+}
+
+static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
+{
+    rt_sample *sm = c->sample;
+    if (sm->nhits < RT_SAMPLE_MAX_HITS) {
+        rt_hit_rec *h = &sm->hits[sm->nhits++];
+        h->object = (uint8_t)object;
+        h->level = (uint8_t)level;
+        h->contrib = contrib;
+    }
+}
+
+/* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
+static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level)
+{
+    const rt_scene *s = c->scene;
+    real t;
+    int id = rt_nearest(s, org, d, R_T_MAX, &t);
+    if (id < 0) {
+        trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
+        return s->background;
+    }
+    const rt_object *o = &s->objects[id];
+    const rt_material *m = &s->materials[o->material];
+    vec3 p = v3_along(org, d, t);
+    dir3 n = rt_shapes[o->kind].normal(o, p);
+    int inside = 0;
+    if (d3_dot(d, n) > 0) { /* hit from behind: shade the side the ray sees */
+        n = d3_neg(n);
+        inside = 1;
+    }
+    /* Secondary rays leave from just above (or, refracted, just below) the surface. */
+    vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
+
+    rt_color base = rt_texture_color(m, p);
+    rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
+    for (int i = 0; i < s->nlights; i++) {
+        const rt_light *li = &s->lights[i];
+        real dist;
+        dir3 l = d3_norm(v3_sub(li->pos, p), &dist);
+        unit ndl = d3_dot(n, l);
+        uint8_t state = 0;
+        if (ndl > 0) { /* the light is in front of the surface */
+            c->stats->rays_shadow++;
+            if (!trace_occluded(s, p_out, l, dist)) {
+                state = 1;
+                col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
+                if (m->specular > 0) {
+                    /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
+                    unit vr = u_neg(d3_dot(d, d3_reflect(d3_neg(l), n)));
+                    if (vr > 0) {
+                        real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
+                        col = v3_madd(col, li->color, spec);
+                        if (spec > RT_HIGHLIGHT_MIN)
+                            state = 2;
+                    }
+                }
+            }
+        }
+        if (level == 0)
+            c->sample->light_state[i] = state;
+    }
+    trace_record(c, id, level, v3_scale(col, weight));
+
+    if (depth > 0) {
+        real kr = m->reflect;
+        if (m->transmit > 0) {
+            dir3 rd;
+            real eta = inside ? m->ior : m->ior_inv;
+            if (d3_refract(d, n, eta, &rd)) {
+                c->stats->rays_refract++;
+                vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
+                rt_color tc = trace_ray(c, p_in, rd, depth - 1, r_mul(weight, m->transmit),
+                                        level + 1);
+                col = v3_madd(col, tc, m->transmit);
+            } else {
+                kr = r_add(kr, m->transmit); /* total internal reflection */
+            }
+        }
+        if (kr > 0) {
+            c->stats->rays_reflect++;
+            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, r_mul(weight, kr),
+                                    level + 1);
+            col = v3_madd(col, rc, kr);
+        }
+    }
+    return col;
+}
+
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, int x, int y, int depth, rt_stats *stats,
+                    rt_sample *out)
+{
+    trace_ctx c = {s, stats, out};
+    out->nhits = 0;
+    for (int i = 0; i < RT_MAX_LIGHTS; i++)
+        out->light_state[i] = 0;
+    stats->rays_primary++;
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
+}
