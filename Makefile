@@ -106,9 +106,11 @@ $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image
 
 define san_progs
 $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
 
 $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ -lcmocka -lm
 endef
 $(eval $(call san_progs,san-float))

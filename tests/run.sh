@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# run.sh: fixray's test suite (make test): unit tests, frame comparison, determinism, command line.
+# Expects `make all san` to have been run. Prints one line per check and a closing
+# 'N passed, N failed' line; exits non-zero when any check fails.
+set -u
+cd "$(dirname "$0")/.."
+
+B=build
+T=$B/test
+rm -rf "$T" && mkdir -p "$T"
+passed=0
+failed=0
+
+pass() { passed=$((passed + 1)); echo "ok   $*"; }
+fail() { failed=$((failed + 1)); echo "FAIL $*"; }
+
+# ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
+for v in san-fixed san-float; do
+  for t in test_numeric test_shapes test_noise; do
+    if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
+      pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
+      grep -E '^(noise|fbm|sphere|numeric)' "$T/$v-$t.log" | sed 's/^/       /'
+    else
+      fail "$v/$t"
+      sed 's/^/       /' "$T/$v-$t.log" | tail -30
+    fi
+  done
+done
+
+# ---- frames: fixed vs float on the demo scene --------------------------------------------------
+# The bound: PSNR >= 40 dB and at most 0.5% of pixels with a channel off by more than 8.
+for time in 0 6 12.5 18; do
+  f=$T/float-$time.png x=$T/fixed-$time.png
+  if ! $B/rt-float render --time "$time" -o "$f" 2>/dev/null ||
+     ! $B/rt-fixed render --time "$time" -o "$x" 2>/dev/null; then
+    fail "render demo at t=$time"
+    continue
+  fi
+  line=$($B/rt-cmp "$x" "$f" --diff "$T/diff-$time.png")
+  psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
+  over8=$(sed -n 's/.*over8=\([0-9]*\).*/\1/p' <<<"$line")
+  pixels=$(sed -n 's/.*pixels=\([0-9]*\).*/\1/p' <<<"$line")
+  if [ -n "$psnr" ] && awk -v p="$psnr" -v o="$over8" -v n="$pixels" \
+       'BEGIN { exit !((p == "inf" || p >= 40) && o * 200 <= n) }'; then
+    pass "fixed vs float, demo t=${time}s 320x240: $line"
+  else
+    fail "fixed vs float, demo t=${time}s 320x240: $line (want psnr_db >= 40, over8 <= 0.5%; see $T/diff-$time.png)"
+  fi
+done
+
+# ---- determinism: the same frame twice gives the same bytes ------------------------------------
+for real in fixed float; do
+  for ext in png ppm; do
+    $B/rt-$real render --time 3.5 --size 200x150 -o "$T/det1-$real.$ext" 2>/dev/null
+    $B/rt-$real render --time 3.5 --size 200x150 -o "$T/det2-$real.$ext" 2>/dev/null
+    if cmp -s "$T/det1-$real.$ext" "$T/det2-$real.$ext"; then
+      pass "deterministic: rt-$real renders t=3.5 twice to identical .$ext bytes"
+    else
+      fail "deterministic: rt-$real renders t=3.5 twice to different .$ext files"
+    fi
+  done
+done
+# --frame N is --time N/25
+$B/rt-fixed render --frame 50 --size 64x48 -o "$T/frame50.ppm" 2>/dev/null
+$B/rt-fixed render --time 2 --size 64x48 -o "$T/time2.ppm" 2>/dev/null
+if cmp -s "$T/frame50.ppm" "$T/time2.ppm"; then pass "--frame 50 equals --time 2"; else fail "--frame 50 differs from --time 2"; fi
+
+# ---- the whole tracer under the sanitizers, with numeric event counting ------------------------
+for real in fixed float; do
+  out=$($B/san-$real/rt render --time 7 --size 160x120 --stats -o "$T/san-$real.png" 2>"$T/san-$real.err")
+  rc=$?
+  ov=$(sed -n 's/^fx_overflow=//p' <<<"$out")
+  dm=$(sed -n 's/^fx_domain=//p' <<<"$out")
+  if [ $rc -eq 0 ] && [ ! -s "$T/san-$real.err" -o "$(grep -c 'runtime error\|Sanitizer' "$T/san-$real.err")" = 0 ] &&
+     [ "$ov" = 0 ] && [ "$dm" = 0 ]; then
+    pass "sanitized $real render: no ASan/UBSan report, fx_overflow=$ov fx_domain=$dm"
+  else
+    fail "sanitized $real render: exit $rc, fx_overflow=$ov fx_domain=$dm"
+    head -20 "$T/san-$real.err" | sed 's/^/       /'
+  fi
+done
+
+# ---- --stats --------------------------------------------------------------------------------------
+stats=$($B/rt-fixed render --size 80x60 --stats -o "$T/stats.png" 2>/dev/null)
+missing=""
+for key in ms pixels rays_primary rays_shadow rays_reflect rays_refract; do
+  grep -q "^$key=[0-9.]*$" <<<"$stats" || missing="$missing $key"
+done
+if [ -z "$missing" ] && grep -q '^pixels=4800$' <<<"$stats" && grep -q '^rays_primary=4800$' <<<"$stats"; then
+  pass "--stats prints ms, pixels, rays_primary/shadow/reflect/refract"
+else
+  fail "--stats output lacks:$missing"
+fi
+stats=$($B/rt-float render --size 80x60 --depth 0 --stats -o "$T/stats0.png" 2>/dev/null)
+if grep -q '^rays_reflect=0$' <<<"$stats" && grep -q '^rays_refract=0$' <<<"$stats" && grep -q '^depth=0$' <<<"$stats"; then
+  pass "--depth 0 casts no reflected or refracted ray"
+else
+  fail "--depth 0 still casts secondary rays"
+fi
+
+# ---- rt-cmp ---------------------------------------------------------------------------------------
+line=$($B/rt-cmp "$T/det1-fixed.png" "$T/det1-fixed.ppm")
+if [ "$line" = "psnr_db=inf max_abs=0 differing=0 over8=0 pixels=30000" ]; then
+  pass "rt-cmp: PNG and PPM of the same frame are identical ($line)"
+else
+  fail "rt-cmp on identical images printed: $line"
+fi
+if [ -s "$T/diff-6.png" ]; then pass "rt-cmp --diff writes the difference picture"; else fail "rt-cmp --diff wrote nothing"; fi
+
+# ---- bad input: one line on stderr, exit 2 (or 1 for a failed write), nothing left behind -------
+expect_error() { # expected-status message-pattern command...
+  local want=$1 pattern=$2
+  shift 2
+  local err rc
+  err=$("$@" 2>&1 >/dev/null)
+  rc=$?
+  if [ $rc -eq "$want" ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q -- "$pattern" <<<"$err"; then
+    pass "error: ${*#$B/} -> exit $rc: $err"
+  else
+    fail "error: ${*#$B/} -> exit $rc (want $want, one line matching '$pattern'): $err"
+  fi
+}
+R=$B/rt-fixed
+expect_error 2 "unknown option" $R render --bogus
+expect_error 2 "unknown command" $R draw
+expect_error 2 "expected WxH" $R render --size 0x10 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render --size 640 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render --size 5000x100 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render --size -3x4 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render --time -1 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render --time 1.2345 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render --time abc -o "$T/x.png"
+expect_error 2 "expected a frame number" $R render --frame 1e3 -o "$T/x.png"
+expect_error 2 "expected a recursion limit" $R render --depth 9 -o "$T/x.png"
+expect_error 2 "either --time or --frame" $R render --time 1 --frame 2 -o "$T/x.png"
+expect_error 2 "needs a value" $R render -o
+expect_error 2 ".png or .ppm" $R render -o "$T/x.jpg"
+expect_error 1 "cannot write" $R render --size 8x8 -o "$T/no/such/dir/x.png"
+mkdir -p "$T/adir.png"
+expect_error 1 "cannot write" $R render --size 8x8 -o "$T/adir.png"
+if ls "$T"/adir.png.tmp-* >/dev/null 2>&1; then fail "a temporary file was left behind"; else pass "no temporary file left behind after a failed write"; fi
+printf 'P6\n2 2\n255\nabc' >"$T/short.ppm"
+expect_error 2 "truncated" $B/rt-cmp "$T/short.ppm" "$T/det1-fixed.ppm"
+expect_error 2 "cannot open" $B/rt-cmp "$T/missing.png" "$T/det1-fixed.ppm"
+echo "not an image" >"$T/text.png"
+expect_error 2 "bad PNG\|not a PNG" $B/rt-cmp "$T/text.png" "$T/det1-fixed.ppm"
+expect_error 2 "sizes differ" $B/rt-cmp "$T/stats.png" "$T/det1-fixed.png"
+
+echo
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

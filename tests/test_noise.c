@@ -1,0 +1,198 @@
+/* test_noise.c: Perlin noise, fBm and palettes of the build against the same formulas in double. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+#include "noise.h"
+#include "rt.h"
+
+#if REAL_FIXED
+static double to_d(real r) { return r / 65536.0; }
+static real from_d(double x) { return (real)llround(x * 65536.0); }
+/* about fifteen rounded Q16.16 operations per noise value */
+#define NOISE_TOL 2e-4
+#define FBM_TOL 4e-4
+#else
+static double to_d(real r) { return r; }
+static real from_d(double x) { return (real)x; }
+#define NOISE_TOL 2e-5
+/* wrapping a negative coordinate (r + 256) rounds to float: about 1e-5 per octave */
+#define FBM_TOL 2e-4
+#endif
+
+/* The gradient set of src/noise.c (twelve cube edges, four repeated). */
+static const int grad[16][3] = {
+    {1, 1, 0},  {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
+    {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
+    {1, 1, 0},  {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
+};
+
+static double o_dot(int32_t i, int32_t j, int32_t k, double x, double y, double z)
+{
+    const int *g = grad[(rt_noise_hash(i, j, k) >> 8) & 15];
+    return g[0] * x + g[1] * y + g[2] * z;
+}
+
+static double o_fade(double t)
+{
+    return t * t * t * (t * (t * 6 - 15) + 10);
+}
+
+static double o_lerp(double a, double b, double t)
+{
+    return a + (b - a) * t;
+}
+
+static double o_noise(double px, double py, double pz)
+{
+    double fx = floor(px), fy = floor(py), fz = floor(pz);
+    int32_t i = (int32_t)fx, j = (int32_t)fy, k = (int32_t)fz;
+    double x = px - fx, y = py - fy, z = pz - fz;
+    double u = o_fade(x), v = o_fade(y), w = o_fade(z);
+    double a = o_lerp(o_dot(i, j, k, x, y, z), o_dot(i + 1, j, k, x - 1, y, z), u);
+    double b = o_lerp(o_dot(i, j + 1, k, x, y - 1, z), o_dot(i + 1, j + 1, k, x - 1, y - 1, z), u);
+    double c = o_lerp(o_dot(i, j, k + 1, x, y, z - 1), o_dot(i + 1, j, k + 1, x - 1, y, z - 1), u);
+    double d = o_lerp(o_dot(i, j + 1, k + 1, x, y - 1, z - 1),
+                      o_dot(i + 1, j + 1, k + 1, x - 1, y - 1, z - 1), u);
+    return o_lerp(o_lerp(a, b, v), o_lerp(c, d, v), w);
+}
+
+static double o_wrap(double x)
+{
+    double r = fmod(x, RT_NOISE_PERIOD);
+    return r < 0 ? r + RT_NOISE_PERIOD : r;
+}
+
+static double o_fbm(double x, double y, double z, int octaves)
+{
+    double sum = 0, amp = 1;
+    x = o_wrap(x), y = o_wrap(y), z = o_wrap(z);
+    for (int o = 0; o < octaves; o++) {
+        sum += amp * o_noise(x, y, z);
+        amp *= 0.5;
+        x = o_wrap(2 * x), y = o_wrap(2 * y), z = o_wrap(2 * z);
+    }
+    return sum;
+}
+
+static uint32_t rng_state = 777;
+static double rnd(double lo, double hi)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * ((rng_state >> 8) / 16777216.0);
+}
+
+static void test_hash_period(void **state)
+{
+    (void)state;
+    for (int i = -300; i < 300; i += 7)
+        for (int j = -5; j < 5; j++) {
+            assert_int_equal(rt_noise_hash(i, j, 3), rt_noise_hash(i + RT_NOISE_PERIOD, j, 3));
+            assert_int_equal(rt_noise_hash(i, j, 3),
+                             rt_noise_hash(i, j - RT_NOISE_PERIOD, 3 + RT_NOISE_PERIOD));
+        }
+    /* neighbouring lattice points get different gradients often enough */
+    int same = 0;
+    for (int i = 0; i < 256; i++)
+        same += ((rt_noise_hash(i, 0, 0) >> 8) & 15) == ((rt_noise_hash(i + 1, 0, 0) >> 8) & 15);
+    assert_true(same < 64);
+}
+
+static void test_noise_lattice_zero(void **state)
+{
+    (void)state;
+    for (int i = -20; i <= 20; i += 3)
+        assert_int_equal(rt_noise(v3(r_from_int(i), r_from_int(2 * i), r_from_int(-i))), 0);
+}
+
+static void test_noise_vs_double(void **state)
+{
+    (void)state;
+    double worst = 0, lo = 0, hi = 0;
+    fx_events_reset();
+    for (int n = 0; n < 50000; n++) {
+        /* most points near the origin, some anywhere in the scene range */
+        double span = n % 10 == 0 ? 4000 : 50;
+        vec3 p = v3(from_d(rnd(-span, span)), from_d(rnd(-span, span)), from_d(rnd(-span, span)));
+        double want = o_noise(to_d(p.x), to_d(p.y), to_d(p.z));
+        double got = to_d(rt_noise(p));
+        double err = fabs(got - want);
+        if (err > NOISE_TOL)
+            fail_msg("noise(%g, %g, %g) = %g, double gives %g", to_d(p.x), to_d(p.y), to_d(p.z),
+                     got, want);
+        worst = err > worst ? err : worst;
+        lo = got < lo ? got : lo;
+        hi = got > hi ? got : hi;
+    }
+    print_message("noise: 50000 points, worst error %.3g, range [%.3f, %.3f]\n", worst, lo, hi);
+    assert_true(lo > -1.1 && hi < 1.1);
+    assert_true(lo < -0.5 && hi > 0.5); /* it does vary */
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW] + fx_event_count[FX_EV_DOMAIN], 0);
+}
+
+static void test_noise_continuity(void **state)
+{
+    (void)state;
+    /* |grad| of this noise is below 3, so a step of 1e-3 moves it by less than 3e-3 */
+    for (int n = 0; n < 5000; n++) {
+        double x = rnd(-20, 20), y = rnd(-20, 20), z = rnd(-20, 20);
+        double a = to_d(rt_noise(v3(from_d(x), from_d(y), from_d(z))));
+        double b = to_d(rt_noise(v3(from_d(x + 1e-3), from_d(y), from_d(z))));
+        assert_true(fabs(a - b) < 3e-3 + 2 * NOISE_TOL);
+    }
+}
+
+static void test_fbm_vs_double(void **state)
+{
+    (void)state;
+    double worst = 0;
+    fx_events_reset();
+    for (int n = 0; n < 20000; n++) {
+        int oct = 1 + n % RT_NOISE_MAX_OCTAVES;
+        vec3 p = v3(from_d(rnd(-3000, 3000)), from_d(rnd(-300, 300)), from_d(rnd(-30, 30)));
+        double want = o_fbm(to_d(p.x), to_d(p.y), to_d(p.z), oct);
+        double got = to_d(rt_fbm(p, oct));
+        double err = fabs(got - want);
+        if (err > FBM_TOL)
+            fail_msg("fbm(%g, %g, %g; %d) = %g, double gives %g", to_d(p.x), to_d(p.y),
+                     to_d(p.z), oct, got, want);
+        worst = err > worst ? err : worst;
+    }
+    print_message("fbm: 20000 points, 1-8 octaves, worst error %.3g\n", worst);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW] + fx_event_count[FX_EV_DOMAIN], 0);
+}
+
+static void test_palette(void **state)
+{
+    (void)state;
+    for (int id = 0; id < RT_PAL_COUNT; id++) {
+        vec3 a = rt_palette(id, 0), b = rt_palette(id, R_ONE);
+        /* clamped outside [0, 1] */
+        vec3 c = rt_palette(id, R(-3.0)), d = rt_palette(id, R(7.0));
+        assert_true(a.x == c.x && a.y == c.y && a.z == c.z);
+        assert_true(b.x == d.x && b.y == d.y && b.z == d.z);
+        /* every colour stays in [0, 1] and changes smoothly */
+        vec3 prev = a;
+        for (int i = 1; i <= 100; i++) {
+            vec3 e = rt_palette(id, r_from_ratio(i, 100));
+            assert_true(to_d(e.x) >= 0 && to_d(e.x) <= 1 && to_d(e.y) >= 0 && to_d(e.z) <= 1);
+            assert_true(fabs(to_d(e.x) - to_d(prev.x)) < 0.05);
+            prev = e;
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hash_period),     cmocka_unit_test(test_noise_lattice_zero),
+        cmocka_unit_test(test_noise_vs_double), cmocka_unit_test(test_noise_continuity),
+        cmocka_unit_test(test_fbm_vs_double),   cmocka_unit_test(test_palette),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,275 @@
+/* test_shapes.c: ray-sphere and ray-plane hits and misses, and the per-sample record, against double. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+#include "rt.h"
+
+#if REAL_FIXED
+static double to_d(real r) { return r / 65536.0; }
+static real from_d(double x) { return (real)llround(x * 65536.0); }
+/* distances along a ray: a few Q16.16 steps */
+#define T_TOL 1e-4
+#else
+static double to_d(real r) { return r; }
+static real from_d(double x) { return (real)x; }
+#define T_TOL 1e-4
+#endif
+
+static vec3 vd(double x, double y, double z)
+{
+    return v3(from_d(x), from_d(y), from_d(z));
+}
+
+static dir3 dirv(double x, double y, double z)
+{
+    return d3_norm(vd(x, y, z), 0);
+}
+
+static rt_object sphere(double x, double y, double z, double r)
+{
+    rt_object o = {.kind = RT_SPHERE};
+    o.center = vd(x, y, z);
+    o.radius = from_d(r);
+    o.radius2 = w_sq(o.radius);
+    return o;
+}
+
+static rt_object plane(double nx, double ny, double nz, double offset)
+{
+    rt_object o = {.kind = RT_PLANE};
+    o.axis = vd(nx, ny, nz);
+    o.normal = d3_norm(o.axis, 0);
+    o.offset = from_d(offset);
+    return o;
+}
+
+/* Hit distance in double of the ray (o, d) with a sphere, or -1. */
+static double sphere_oracle(double ox, double oy, double oz, double dx, double dy, double dz,
+                            double cx, double cy, double cz, double r)
+{
+    double n = sqrt(dx * dx + dy * dy + dz * dz);
+    dx /= n, dy /= n, dz /= n;
+    double lx = cx - ox, ly = cy - oy, lz = cz - oz;
+    double tca = lx * dx + ly * dy + lz * dz;
+    double px = lx - tca * dx, py = ly - tca * dy, pz = lz - tca * dz;
+    double d2 = px * px + py * py + pz * pz;
+    if (d2 > r * r)
+        return -1;
+    double thc = sqrt(r * r - d2);
+    if (tca - thc > 0)
+        return tca - thc;
+    if (tca + thc > 0)
+        return tca + thc;
+    return -1;
+}
+
+static int hit(const rt_object *o, vec3 org, dir3 d, real tmax, double *t)
+{
+    real tr;
+    int h = rt_shapes[o->kind].intersect(o, org, d, tmax, &tr);
+    *t = h ? to_d(tr) : -1;
+    return h;
+}
+
+static void test_sphere_cases(void **state)
+{
+    (void)state;
+    rt_object s = sphere(0, 0, -10, 2);
+    double t;
+    fx_events_reset();
+    /* straight on: t = 8 */
+    assert_true(hit(&s, vd(0, 0, 0), dirv(0, 0, -1), R_T_MAX, &t));
+    assert_true(fabs(t - 8.0) < T_TOL);
+    /* passing beside: miss */
+    assert_false(hit(&s, vd(2.5, 0, 0), dirv(0, 0, -1), R_T_MAX, &t));
+    /* sphere behind the origin: miss (the cheap test) */
+    assert_false(hit(&s, vd(0, 0, 0), dirv(0, 0, 1), R_T_MAX, &t));
+    /* origin inside: the far side, t = r */
+    assert_true(hit(&s, vd(0, 0, -10), dirv(1, 0, 0), R_T_MAX, &t));
+    assert_true(fabs(t - 2.0) < T_TOL);
+    /* beyond tmax: miss; within: hit */
+    assert_false(hit(&s, vd(0, 0, 0), dirv(0, 0, -1), R(7.9), &t));
+    assert_true(hit(&s, vd(0, 0, 0), dirv(0, 0, -1), R(8.1), &t));
+    /* grazing: 1e-3 inside the silhouette hits, 1e-3 outside misses */
+    assert_true(hit(&s, vd(1.999, 0, 0), dirv(0, 0, -1), R_T_MAX, &t));
+    assert_true(fabs(t - sphere_oracle(1.999, 0, 0, 0, 0, -1, 0, 0, -10, 2)) < 2e-3);
+    assert_false(hit(&s, vd(2.001, 0, 0), dirv(0, 0, -1), R_T_MAX, &t));
+    /* far away: a radius-2 sphere 3000 units down a diagonal */
+    rt_object far = sphere(1800, 1200, -2000, 2);
+    assert_true(hit(&far, vd(0, 0, 0), dirv(1800, 1200, -2000), R_T_MAX, &t));
+    double want = sphere_oracle(0, 0, 0, 1800, 1200, -2000, 1800, 1200, -2000, 2);
+    assert_true(fabs(t - want) < 1e-3);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW] + fx_event_count[FX_EV_DOMAIN], 0);
+}
+
+static void test_plane_cases(void **state)
+{
+    (void)state;
+    rt_object p = plane(0, 1, 0, 0);
+    double t;
+    fx_events_reset();
+    assert_true(hit(&p, vd(0, 5, 0), dirv(0, -1, 0), R_T_MAX, &t));
+    assert_true(fabs(t - 5.0) < T_TOL);
+    /* oblique: 45 degrees down from height 5 -> t = 5 sqrt 2 */
+    assert_true(hit(&p, vd(0, 5, 0), dirv(1, -1, 0), R_T_MAX, &t));
+    assert_true(fabs(t - 5.0 * sqrt(2.0)) < T_TOL);
+    /* away from the plane, and parallel to it: miss */
+    assert_false(hit(&p, vd(0, 5, 0), dirv(0, 1, 0), R_T_MAX, &t));
+    assert_false(hit(&p, vd(0, 5, 0), dirv(1, 0, 0), R_T_MAX, &t));
+    /* nearly parallel: the hit lies beyond any scene distance, so it is a miss, not an
+     * overflow */
+    assert_false(hit(&p, vd(0, 5, 0), dirv(1, -0.00005, 0), R_T_MAX, &t));
+    /* shallow but within range: t = 5 / sin(angle), from the direction actually used */
+    dir3 shallow = dirv(1, -0.01, 0);
+#if REAL_FIXED
+    double sin_angle = -shallow.y / 1073741824.0;
+#else
+    double sin_angle = -shallow.y;
+#endif
+    assert_true(hit(&p, vd(0, 5, 0), shallow, R_T_MAX, &t));
+    if (fabs(t - 5.0 / sin_angle) >= 1e-3)
+        fail_msg("shallow plane hit at %.6f, want %.6f", t, 5.0 / sin_angle);
+    /* tilted plane through (0, 0, -10) facing the origin */
+    rt_object q = plane(0, 0, 1, -10);
+    assert_true(hit(&q, vd(3, 2, 0), dirv(0, 0, -1), R_T_MAX, &t));
+    assert_true(fabs(t - 10.0) < T_TOL);
+    /* from behind the plane the hit still counts (planes are two-sided) */
+    assert_true(hit(&q, vd(0, 0, -20), dirv(0, 0, 1), R_T_MAX, &t));
+    assert_true(fabs(t - 10.0) < T_TOL);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW] + fx_event_count[FX_EV_DOMAIN], 0);
+}
+
+/* Deterministic pseudo-random numbers in [lo, hi). */
+static uint32_t rng_state = 12345;
+static double rnd(double lo, double hi)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * ((rng_state >> 8) / 16777216.0);
+}
+
+static void test_sphere_random(void **state)
+{
+    (void)state;
+    int disagree = 0, n = 20000;
+    double worst_t = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double cx = rnd(-100, 100), cy = rnd(-100, 100), cz = rnd(-100, 100), r = rnd(0.05, 20);
+        double ox = rnd(-100, 100), oy = rnd(-100, 100), oz = rnd(-100, 100);
+        /* aim near the sphere so that about half the rays hit */
+        double dx = cx + rnd(-1.5, 1.5) * r - ox, dy = cy + rnd(-1.5, 1.5) * r - oy,
+               dz = cz + rnd(-1.5, 1.5) * r - oz;
+        rt_object s = sphere(cx, cy, cz, r);
+        /* the oracle uses the build's own quantised inputs */
+        double qcx = to_d(s.center.x), qcy = to_d(s.center.y), qcz = to_d(s.center.z);
+        double qr = to_d(s.radius);
+        vec3 org = vd(ox, oy, oz);
+        double qox = to_d(org.x), qoy = to_d(org.y), qoz = to_d(org.z);
+        double want = sphere_oracle(qox, qoy, qoz, dx, dy, dz, qcx, qcy, qcz, qr);
+        double t;
+        int h = hit(&s, org, dirv(dx, dy, dz), R_T_MAX, &t);
+        if (h != (want > 0)) {
+            /* allowed only within a thin band around tangency */
+            double n2 = sqrt(dx * dx + dy * dy + dz * dz);
+            double lx = qcx - qox, ly = qcy - qoy, lz = qcz - qoz;
+            double tca = (lx * dx + ly * dy + lz * dz) / n2;
+            double perp = sqrt(fabs(lx * lx + ly * ly + lz * lz - tca * tca));
+            if (fabs(perp - qr) > 1e-3)
+                fail_msg("hit/miss disagree far from tangency: perp %g r %g", perp, qr);
+            disagree++;
+            continue;
+        }
+        if (h) {
+            /* distance error grows near tangency (sqrt of a small discriminant) */
+            double err = fabs(t - want);
+            double allowed = 2e-4 + 4e-3 * sqrt(r);
+            if (err > allowed)
+                fail_msg("t error %g > %g (t %g, r %g)", err, allowed, want, qr);
+            if (err > worst_t)
+                worst_t = err;
+        }
+    }
+    print_message("sphere random: %d rays, %d tangent disagreements, worst t error %.3g\n", n,
+                  disagree, worst_t);
+    assert_true(disagree < n / 1000);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
+/* Tracing a pixel fills the per-sample record adaptive subsampling will compare. */
+static void test_sample_record(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    s = (rt_scene){0};
+    s.background = vd(0.1, 0.2, 0.3);
+    s.ambient = vd(0.2, 0.2, 0.2);
+    s.depth = 3;
+    s.materials[0] = (rt_material){.diffuse = vd(0.8, 0.2, 0.2), .ambient = R_ONE,
+                                   .specular = R(0.9), .shininess = 8, .ior = R_ONE};
+    s.materials[1] = (rt_material){.diffuse = vd(0.1, 0.1, 0.1), .ambient = R_ONE,
+                                   .reflect = R(0.8), .ior = R_ONE};
+    s.nmaterials = 2;
+    s.objects[0] = sphere(0, 0, -10, 2);
+    s.objects[0].material = 0;
+    s.nobjects = 1;
+    s.lights[0] = (rt_light){vd(0, 0, 10), vd(1, 1, 1)};
+    s.nlights = 1;
+    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), R(40.0)};
+    rt_scene_prepare(&s);
+    rt_view v;
+    rt_view_init(&v, &s.camera, 64, 64);
+    rt_stats st = {0};
+    rt_sample sm;
+
+    /* centre pixel: the sphere, lit head-on with a highlight */
+    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    assert_int_equal(sm.nhits, 1);
+    assert_int_equal(sm.hits[0].object, 0);
+    assert_int_equal(sm.hits[0].level, 0);
+    assert_int_equal(sm.light_state[0], 2);
+    /* corner pixel: background */
+    rt_trace_pixel(&s, &v, 0, 0, 3, &st, &sm);
+    assert_int_equal(sm.nhits, 1);
+    assert_int_equal(sm.hits[0].object, RT_NO_OBJECT);
+    assert_int_equal(rt_color_pixel(sm.color), rt_color_pixel(s.background));
+
+    /* a second sphere between light and the first: the centre is in shadow */
+    s.objects[1] = sphere(0, 0, 2, 1);
+    s.objects[1].material = 1;
+    s.nobjects = 2;
+    s.camera.eye = vd(0, 6, 0);
+    rt_scene_prepare(&s);
+    rt_view_init(&v, &s.camera, 64, 64);
+    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    assert_int_equal(sm.hits[0].object, 0);
+    assert_int_equal(sm.light_state[0], 0);
+
+    /* look at the mirror sphere from the side: level 0 is the mirror, level 1 what it shows */
+    s.camera = (rt_camera){vd(0, 0, 6), vd(0, 0, 2), vd(0, 1, 0), R(40.0)};
+    rt_scene_prepare(&s);
+    rt_view_init(&v, &s.camera, 64, 64);
+    st = (rt_stats){0};
+    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    assert_int_equal(sm.hits[0].object, 1);
+    assert_true(sm.nhits >= 2);
+    assert_int_equal(sm.hits[1].level, 1);
+    assert_int_equal(st.rays_primary, 1);
+    assert_true(st.rays_reflect >= 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sphere_cases),
+        cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random),
+        cmocka_unit_test(test_sample_record),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
