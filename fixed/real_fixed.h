@@ -39,13 +39,10 @@ void u_sincos_deg(real deg, unit *s, unit *c);
 /* Saturate a 64-bit integer to the range of real. */
 static inline real fx_sat(int64_t v)
 {
-    if (v > INT32_MAX) {
+    /* one unsigned compare: v in [-INT32_MAX, INT32_MAX] */
+    if (__builtin_expect((uint64_t)v + INT32_MAX > 2 * (uint64_t)INT32_MAX, 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
-        return R_MAX;
-    }
-    if (v < -(int64_t)INT32_MAX) {
-        FX_EVENT(FX_EV_OVERFLOW);
-        return -R_MAX;
+        return v > 0 ? R_MAX : -R_MAX;
     }
     return (real)v;
 }
@@ -96,14 +93,19 @@ static inline real r_abs(real a)
     return a < 0 ? r_neg(a) : a;
 }
 
+/* The same result as libfixmath's fix16_mul (rounded, overflow detected; the unit test checks
+ * them bit for bit), written inline: fix16_mul lives in a separate object and is called about
+ * a million times per frame. On overflow it saturates where fix16_mul returns 0x80000000. */
 static inline real r_mul(real a, real b)
 {
-    real p = fix16_mul(a, b);
-    if (p == fix16_overflow) {
+    int64_t p = (int64_t)a * b;
+    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
+    real r = (real)((q + 0x8000) >> 16);
+    if (__builtin_expect((uint64_t)((p >> 47) + 1) > 1 || r == fix16_overflow, 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
         return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
     }
-    return p;
+    return r;
 }
 
 /* a * 2^-n, rounded. */
@@ -202,13 +204,9 @@ static inline real r_div_u(real a, unit b)
 
 static inline unit u_sat(int64_t v)
 {
-    if (v > INT32_MAX) {
+    if (__builtin_expect((uint64_t)v + INT32_MAX > 2 * (uint64_t)INT32_MAX, 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
-        return INT32_MAX;
-    }
-    if (v < -(int64_t)INT32_MAX) {
-        FX_EVENT(FX_EV_OVERFLOW);
-        return -INT32_MAX;
+        return v > 0 ? INT32_MAX : -INT32_MAX;
     }
     return (unit)v;
 }
@@ -290,8 +288,9 @@ static inline wide w_sub(wide a, wide b)
     return a - b;
 }
 
-/* Squared length |a|^2. Every vector given here is a difference of scene positions, so each
- * component is below 2^30 raw and the sum below 3 * 2^60: no overflow. */
+/* Squared length |a|^2. Every vector given here is a difference of a scene position and a ray
+ * origin (see the in-scene variants below): each component is below 24576 (raw < 2^31), so the
+ * sum of squares stays below 2^63. */
 static inline wide w_len2(vec3 a)
 {
     return (int64_t)a.x * a.x + (int64_t)a.y * a.y + (int64_t)a.z * a.z;
@@ -361,6 +360,28 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
     return fx_norm64(x, y, z, 60, len);
 }
 
+/* Unit vector along a Q.60 vector that is already unit to within ~2^-20 (reflected and
+ * refracted directions): rounded to Q2.30 and corrected by one first-order step
+ * v * (1 - e/2), e = |v|^2 - 1; anything further from unit goes through fx_norm64. */
+static inline dir3 fx_renorm60(int64_t x, int64_t y, int64_t z)
+{
+    const uint64_t two = (uint64_t)1 << 61; /* 2.0 in Q.60: beyond it the rounding below would not fit */
+    if (__builtin_expect((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
+                             (uint64_t)z + two >= 2 * two,
+                         0))
+        return fx_norm64(x, y, z, 60, 0);
+    int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
+            c = (int32_t)fx_round_shift(z, 30);
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    if (__builtin_expect(e > ((int64_t)1 << 40) || e < -((int64_t)1 << 40), 0))
+        return fx_norm64(x, y, z, 60, 0);
+    int64_t h = e >> 9; /* below 2^31 */
+    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * h, 52),
+              b - (int32_t)fx_round_shift((int64_t)b * h, 52),
+              c - (int32_t)fx_round_shift((int64_t)c * h, 52)};
+    return d;
+}
+
 /* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */
 static inline dir3 d3_reflect(dir3 d, dir3 n)
 {
@@ -368,7 +389,7 @@ static inline dir3 d3_reflect(dir3 d, dir3 n)
     int64_t x = (int64_t)d.x * U_ONE - 2 * k * n.x;
     int64_t y = (int64_t)d.y * U_ONE - 2 * k * n.y;
     int64_t z = (int64_t)d.z * U_ONE - 2 * k * n.z;
-    return fx_norm64(x, y, z, 60, 0);
+    return fx_renorm60(x, y, z);
 }
 
 /* Refraction of d through a surface with normal n facing the incoming ray (d.n <= 0), with
@@ -388,8 +409,28 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
     int64_t x = e * d.x + m * n.x; /* Q.60: below 3 * 2^60 + 4 * 2^60 for eta <= 3 */
     int64_t y = e * d.y + m * n.y;
     int64_t z = e * d.z + m * n.z;
-    *out = fx_norm64(x, y, z, 60, 0);
+    *out = fx_renorm60(x, y, z);
     return 1;
 }
 
+/* ---- in-scene variants, for the sphere test: no saturation test. Objects lie within
+ * R_SCENE_MAX (4096) and ray origins within R_SCENE_MAX + R_T_MAX (20480) of the origin, so a
+ * difference of the two is below 24576 (raw < 2^31), a dot product with a unit vector is a sum
+ * of three products below 2^61, and w_len2 of such a difference stays below 2^63. Any breach is
+ * signed overflow, which the UBSan test builds report. */
+static inline vec3 v3_sub_in(vec3 a, vec3 b)
+{
+    return v3(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+static inline real v3_dot_d_in(vec3 v, dir3 d)
+{
+    int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
+    return (real)fx_round_shift(s, 30);
+}
+static inline vec3 d3_scale_in(dir3 d, real s)
+{
+    return v3((real)fx_round_shift((int64_t)s * d.x, 30), (real)fx_round_shift((int64_t)s * d.y, 30),
+              (real)fx_round_shift((int64_t)s * d.z, 30));
+}
 #endif
+

@@ -281,4 +281,8 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
     return 1;
 }
 
+static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline real v3_dot_d_in(vec3 v, dir3 d) { return v3_dot_d(v, d); }
+static inline vec3 d3_scale_in(dir3 d, real s) { return d3_scale(d, s); }
 #endif
+

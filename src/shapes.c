@@ -6,12 +6,15 @@
  * |L|^2 - tca^2 would cancel). */
 static int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
 {
-    vec3 l = v3_sub(o->center, org);
-    real tca = v3_dot_d(l, d);
+    vec3 l = v3_sub_in(o->center, org);
+    real tca = v3_dot_d_in(l, d);
     /* Cheap miss test: the sphere lies behind an origin that is outside it. */
     if (tca < 0 && w_len2(l) > o->radius2)
         return 0;
-    vec3 perp = v3_sub(l, d3_scale(d, tca));
+    /* every hit lies at t >= tca - radius */
+    if (tca > r_add(tmax, o->radius))
+        return 0;
+    vec3 perp = v3_sub_in(l, d3_scale_in(d, tca));
     wide d2 = w_len2(perp);
     if (d2 > o->radius2)
         return 0;

@@ -61,8 +61,10 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     vec3 p = v3_along(org, d, t);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
-    if (d3_dot(d, n) > 0) { /* hit from behind: shade the side the ray sees */
+    unit dn = d3_dot(d, n);
+    if (dn > 0) { /* hit from behind: shade the side the ray sees */
         n = d3_neg(n);
+        dn = u_neg(dn);
         inside = 1;
     }
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
@@ -83,7 +85,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
                 if (m->specular > 0) {
                     /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                    unit vr = u_neg(d3_dot(d, d3_reflect(d3_neg(l), n)));
+                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation */
+                    unit vr = u_add(d3_dot(d, l), u_neg(u_muli(u_mul(ndl, dn), 2)));
                     if (vr > 0) {
                         real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
                         col = v3_madd(col, li->color, spec);
