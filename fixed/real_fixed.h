@@ -108,10 +108,10 @@ static inline real r_mul(real a, real b)
     return r;
 }
 
-/* a * 2^-n, rounded. */
+/* a * 2^-n for n >= 0, rounded. */
 static inline real r_shr(real a, int n)
 {
-    return (real)fx_round_shift(a, n);
+    return n > 0 ? (real)fx_round_shift(a, n) : a;
 }
 
 /* Multiply by a small non-negative integer. */
@@ -143,16 +143,24 @@ static inline real r_sqrt(real a)
     return fix16_sqrt(a);
 }
 
+/* x reduced modulo 2 pi into (-pi, pi]. 2 pi is 411774.83 LSB in Q16.16, so the reduction is
+ * done in Q.32 where 2 pi is exact to 2^-33: no drift for large angles. */
+static inline real r_reduce_angle(real a)
+{
+    const int64_t two_pi = 26986075409LL, pi = 13493037705LL; /* Q.32 */
+    int64_t v = ((int64_t)a * 65536) % two_pi;
+    if (v > pi)
+        v -= two_pi;
+    else if (v <= -pi)
+        v += two_pi;
+    return (real)fx_round_shift(v, 16);
+}
+
 /* Sine. libfixmath's series is accurate on [-pi/2, pi/2] only, so the angle is reduced to
  * (-pi, pi] and folded into that interval first. */
 static inline real r_sin(real a)
 {
-    const int32_t two_pi = 2 * R_PI;
-    int32_t x = a % two_pi;
-    if (x > R_PI)
-        x -= two_pi;
-    else if (x <= -R_PI)
-        x += two_pi;
+    int32_t x = r_reduce_angle(a);
     if (x > R_PI / 2)
         x = R_PI - x;
     else if (x < -R_PI / 2)
@@ -162,8 +170,8 @@ static inline real r_sin(real a)
 
 static inline real r_cos(real a)
 {
-    /* cos a = sin(pi/2 - a), reduced without overflowing for any a */
-    return r_sin(R_PI / 2 - (a % (2 * R_PI)));
+    /* cos a = sin(pi/2 - a); the reduced angle keeps the sum in range */
+    return r_sin(R_PI / 2 - r_reduce_angle(a));
 }
 
 /* Split x into floor(x) (returned through *i) and the fraction x - floor(x) in [0, 1). */
@@ -245,20 +253,20 @@ static inline real u_to_real(unit a)
 /* unit / positive integer, rounded. */
 static inline unit u_divi(unit a, int32_t i)
 {
-    return (unit)(a >= 0 ? (a + i / 2) / i : -((-(int64_t)a + i / 2) / i));
+    return (unit)(a >= 0 ? ((int64_t)a + i / 2) / i : -((-(int64_t)a + i / 2) / i));
 }
 
-/* a / b for units, rounded; |a / b| must stay below 2. */
+/* a / b for units, rounded to nearest; |a / b| must stay below 2. */
 static inline unit u_div(unit a, unit b)
 {
     if (b == 0) {
         FX_EVENT(FX_EV_DOMAIN);
         return a == 0 ? 0 : (a < 0 ? -INT32_MAX : INT32_MAX);
     }
-    int64_t n = (int64_t)a * U_ONE;
-    int64_t q = (n >= 0) == (b > 0) ? (n + (b > 0 ? b : -(int64_t)b) / 2) / b
-                                    : (n - (b > 0 ? b : -(int64_t)b) / 2) / b;
-    return u_sat(q);
+    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30;
+    uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
+    int64_t q = (int64_t)((n + m / 2) / m);
+    return u_sat((a < 0) != (b < 0) ? -q : q);
 }
 
 /* A colour channel as a byte: clamped to [0, 1], scaled to 0..255 and rounded. */
