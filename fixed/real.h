@@ -122,6 +122,12 @@ static inline vec3 v3_along(vec3 o, dir3 d, real t)
               r_add(o.z, r_mul_u(t, d.z)));
 }
 
+/* Is every coordinate of p within [-lim, lim]? */
+static inline int v3_within(vec3 p, real lim)
+{
+    return p.x <= lim && p.x >= -lim && p.y <= lim && p.y >= -lim && p.z <= lim && p.z >= -lim;
+}
+
 static inline dir3 d3_neg(dir3 d)
 {
     dir3 n = {u_neg(d.x), u_neg(d.y), u_neg(d.z)};

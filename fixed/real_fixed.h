@@ -422,7 +422,8 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 }
 
 /* ---- in-scene variants, for the sphere test: no saturation test. Objects lie within
- * R_SCENE_MAX (4096) and ray origins within R_SCENE_MAX + R_T_MAX (20480) of the origin, so a
+ * R_SCENE_MAX (4096) and ray origins within R_SCENE_MAX + R_T_MAX (20480) of the origin (the
+ * tracer casts secondary rays only from inside the scene cube to keep it so), so a
  * difference of the two is below 24576 (raw < 2^31), a dot product with a unit vector is a sum
  * of three products below 2^61, and w_len2 of such a difference stays below 2^63. Any breach is
  * signed overflow, which the UBSan test builds report. */

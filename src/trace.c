@@ -101,7 +101,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     }
     trace_record(c, id, level, v3_scale(col, weight));
 
-    if (depth > 0) {
+    /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
+     * origin is then inside the cube or the hit of a ray cast from it, so within
+     * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
+     * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
+     * what it mirrors is below a pixel. */
+    if (depth > 0 && v3_within(p, R_SCENE_MAX)) {
         real kr = m->reflect;
         if (m->transmit > 0) {
             dir3 rd;

@@ -19,7 +19,7 @@ for v in san-fixed san-float; do
   for t in test_numeric test_shapes test_noise; do
     if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
-      grep -E '^(noise|fbm|sphere|numeric)' "$T/$v-$t.log" | sed 's/^/       /'
+      grep -E '^(noise|fbm|sphere|far|numeric)' "$T/$v-$t.log" | sed 's/^/       /'
     else
       fail "$v/$t"
       sed 's/^/       /' "$T/$v-$t.log" | tail -30

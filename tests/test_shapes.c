@@ -263,6 +263,43 @@ static void test_sample_record(void **state)
     assert_true(st.rays_reflect >= 1);
 }
 
+/* Two facing mirror planes far apart: rays bounce outwards, each bounce up to R_T_MAX further.
+ * Every ray origin must stay where the tracer's 64-bit bounds hold (UBSan would report signed
+ * overflow otherwise) and no saturation may happen. */
+static void test_far_mirror_chain(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    s = (rt_scene){0};
+    s.background = vd(0.1, 0.2, 0.3);
+    s.ambient = vd(0.2, 0.2, 0.2);
+    s.depth = RT_MAX_DEPTH;
+    s.materials[0] = (rt_material){.diffuse = vd(0.2, 0.2, 0.2), .ambient = R_ONE,
+                                   .reflect = R(0.9), .ior = R_ONE};
+    s.materials[1] = (rt_material){.diffuse = vd(0.8, 0.2, 0.2), .ambient = R_ONE, .ior = R_ONE};
+    s.nmaterials = 2;
+    s.objects[0] = plane(0, 1, 0, 0);    /* floor */
+    s.objects[1] = plane(0, -1, 0, -4000); /* ceiling at y = 4000 */
+    s.objects[2] = sphere(-4000, 100, -4000, 10);
+    s.objects[2].material = 1;
+    s.nobjects = 3;
+    s.lights[0] = (rt_light){vd(0, 3000, 0), vd(1, 1, 1)};
+    s.nlights = 1;
+    /* look along the diagonal, 14 degrees down: about 16000 units between bounces */
+    s.camera = (rt_camera){vd(0, 2000, 0), vd(1000, 1647, 1000), vd(0, 1, 0), R(20.0)};
+    rt_scene_prepare(&s);
+    rt_view v;
+    rt_view_init(&v, &s.camera, 32, 32);
+    rt_stats st = {0};
+    static uint32_t pixels[32 * 32];
+    fx_events_reset();
+    rt_render_full(&s, &v, RT_MAX_DEPTH, pixels, 32, 32, 32, &st);
+    print_message("far mirror chain: %lu reflected rays, %lu overflow events\n",
+                  (unsigned long)st.rays_reflect, fx_event_count[FX_EV_OVERFLOW]);
+    assert_true(st.rays_reflect > 0);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -270,6 +307,7 @@ int main(void)
         cmocka_unit_test(test_plane_cases),
         cmocka_unit_test(test_sphere_random),
         cmocka_unit_test(test_sample_record),
+        cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
