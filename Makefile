@@ -32,10 +32,10 @@ OPT := -O2
 SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 # The tracer core: the same sources in every variant.
-CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/noise.c \
+CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
              src/texture.c src/demo.c
 APP_SRCS := src/app.c src/image.c platform/headless.c
-TESTS := test_numeric test_shapes test_noise
+TESTS := test_numeric test_shapes test_noise test_subsample
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
 
 # On x86-64 the fixed core is compiled without access to floating-point registers: any float

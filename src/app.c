@@ -1,5 +1,6 @@
 /* app.c: the command line of rt-float and rt-fixed: parses options and runs the render command. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "image.h"
@@ -25,7 +26,13 @@ typedef struct app_opts {
     int have_time, have_frame;
     int depth; /* -1: the scene's */
     int stats;
+    int mode, grid;
+    long threshold, min_contrib; /* in 1/10000 */
+    int show_samples;
 } app_opts;
+
+#define APP_DECIMALS 4
+#define APP_SCALE 10000
 
 static void app_usage(FILE *f)
 {
@@ -36,10 +43,17 @@ static void app_usage(FILE *f)
             "  --time SECONDS      moment of the animation, e.g. 2.5 (default 0)\n"
             "  --frame N           frame N at %d frames per second (instead of --time)\n"
             "  --depth N           recursion limit 0..%d (default: the scene's)\n"
+            "  --mode M            full (trace every pixel) or adaptive (default)\n"
+            "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
+            "  --threshold X       adaptive: split squares whose corners' colour contributions\n"
+            "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
+            "  --min-contrib X     skip secondary rays weighing less than X in the pixel, 0..1\n"
+            "                      (default 0.01; 0 = trace every ray)\n"
+            "  --show-samples      paint every traced point white\n"
             "  --stats             print key=value statistics on standard output\n"
             "       %s --help\n"
             "Number system of this build: %s.\n",
-            app_name, APP_MAX_SIDE, APP_FPS, RT_MAX_DEPTH, app_name, APP_REAL);
+            app_name, APP_MAX_SIDE, APP_FPS, RT_MAX_DEPTH, RT_DEFAULT_GRID, app_name, APP_REAL);
 }
 
 static int app_error(const char *option, const char *what, const char *value)
@@ -75,32 +89,45 @@ static int app_parse_int(const char *s, const char **end, long lo, long hi, long
     return 0;
 }
 
-/* Seconds with at most three decimals, as milliseconds: no floating point involved. */
-static int app_parse_time(const char *s, int32_t *ms)
+/* A decimal number with at most `decimals` decimals, in units of 10^-decimals, at most `max`
+ * such units: no floating point involved. */
+static int app_parse_decimal(const char *s, int decimals, long max, long *out)
 {
     const char *p;
-    long whole, frac = 0;
-    if (app_parse_int(s, &p, 0, APP_MAX_TIME_MS / 1000, &whole) != 0)
+    long whole, frac = 0, scale = 1;
+    for (int i = 0; i < decimals; i++)
+        scale *= 10;
+    if (app_parse_int(s, &p, 0, max / scale, &whole) != 0)
         return -1;
     if (*p == '.') {
         int digits = 0;
         p++;
-        while (*p >= '0' && *p <= '9' && digits < 3) {
+        while (*p >= '0' && *p <= '9' && digits < decimals) {
             frac = frac * 10 + (*p - '0');
             digits++;
             p++;
         }
         if (digits == 0 || *p)
             return -1;
-        while (digits++ < 3)
+        while (digits++ < decimals)
             frac *= 10;
     } else if (*p) {
         return -1;
     }
-    long total = whole * 1000 + frac;
-    if (total > APP_MAX_TIME_MS)
+    long total = whole * scale + frac;
+    if (total > max)
         return -1;
-    *ms = (int32_t)total;
+    *out = total;
+    return 0;
+}
+
+/* Seconds with at most three decimals, as milliseconds. */
+static int app_parse_time(const char *s, int32_t *ms)
+{
+    long v;
+    if (app_parse_decimal(s, 3, APP_MAX_TIME_MS, &v) != 0)
+        return -1;
+    *ms = (int32_t)v;
     return 0;
 }
 
@@ -124,7 +151,9 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
         int takes_value = strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
                           strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
-                          strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0;
+                          strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0 ||
+                          strcmp(a, "--mode") == 0 || strcmp(a, "--grid") == 0 ||
+                          strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0;
         if (takes_value && !v)
             return app_error(a, "needs a value", NULL);
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
@@ -147,8 +176,28 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
             if (app_parse_int(v, NULL, 0, RT_MAX_DEPTH, &n) != 0)
                 return app_error(a, "expected a recursion limit in 0..8", v);
             o->depth = (int)n;
+        } else if (strcmp(a, "--mode") == 0) {
+            if (strcmp(v, "full") == 0)
+                o->mode = RT_MODE_FULL;
+            else if (strcmp(v, "adaptive") == 0)
+                o->mode = RT_MODE_ADAPTIVE;
+            else
+                return app_error(a, "expected full or adaptive", v);
+        } else if (strcmp(a, "--grid") == 0) {
+            long n;
+            if (app_parse_int(v, NULL, 2, RT_GRID_MAX, &n) != 0 || (n & (n - 1)) != 0)
+                return app_error(a, "expected a square size of 2, 4, 8 or 16", v);
+            o->grid = (int)n;
+        } else if (strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0) {
+            long n;
+            if (app_parse_decimal(v, APP_DECIMALS, APP_SCALE, &n) != 0)
+                return app_error(a, "expected a number in 0..1 with at most 4 decimals", v);
+            *(a[2] == 't' ? &o->threshold : &o->min_contrib) = n;
         } else if (strcmp(a, "--stats") == 0) {
             o->stats = 1;
+            continue;
+        } else if (strcmp(a, "--show-samples") == 0) {
+            o->show_samples = 1;
             continue;
         } else {
             return app_error(a, "unknown option", NULL);
@@ -164,7 +213,8 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
 
 static int app_render(int argc, char **argv)
 {
-    app_opts o = {.width = 320, .height = 240, .depth = -1};
+    app_opts o = {.width = 320, .height = 240, .depth = -1, .mode = RT_MODE_ADAPTIVE,
+                  .grid = RT_DEFAULT_GRID, .threshold = 625, .min_contrib = 100};
     int rc = app_parse_render(argc, argv, &o);
     if (rc != 0)
         return rc;
@@ -173,21 +223,46 @@ static int app_render(int argc, char **argv)
 
     static rt_scene scene;
     rt_demo_scene(&scene, o.time_ms);
-    int depth = o.depth >= 0 ? o.depth : scene.depth;
+    rt_params params = {
+        .depth = o.depth >= 0 ? o.depth : scene.depth,
+        .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
+        .mode = o.mode,
+        .grid = o.grid,
+        .threshold = r_from_ratio((int32_t)o.threshold, APP_SCALE),
+    };
     rt_view view;
     rt_view_init(&view, &scene.camera, o.width, o.height);
 
+    /* Working storage of the adaptive mode, and the map of traced points when asked for. */
+    unsigned long work_bytes = rt_render_work_size(&params, o.width);
+    void *work = work_bytes ? malloc(work_bytes) : NULL;
+    uint8_t *traced = o.show_samples ? malloc((size_t)o.width * (size_t)o.height) : NULL;
     plat_frame frame;
-    if (plat_frame_acquire(&frame, o.width, o.height) != 0)
-        return 1;
+    if ((work_bytes && !work) || (o.show_samples && !traced)) {
+        fprintf(stderr, "%s: out of memory for a %dx%d frame\n", app_name, o.width, o.height);
+        rc = 1;
+    } else if (plat_frame_acquire(&frame, o.width, o.height) != 0) {
+        rc = 1;
+    }
+    if (rc != 0) {
+        free(work);
+        free(traced);
+        return rc;
+    }
     rt_stats stats = {0};
 #if FX_COUNT_EVENTS
     fx_events_reset();
 #endif
     uint64_t t0 = plat_time_us();
-    rt_render_full(&scene, &view, depth, frame.pixels, frame.width, frame.height, frame.stride,
-                   &stats);
+    rt_render(&scene, &view, &params, frame.pixels, frame.stride, &stats, work, traced);
     uint64_t us = plat_time_us() - t0;
+    if (traced)
+        for (int y = 0; y < o.height; y++)
+            for (int x = 0; x < o.width; x++)
+                if (traced[(long)y * o.width + x])
+                    frame.pixels[(long)y * frame.stride + x] = 0xFFFFFF;
+    free(work);
+    free(traced);
     rc = plat_frame_present(&frame, o.output) == 0 ? 0 : 1;
     plat_frame_release(&frame);
     if (rc != 0)
@@ -195,13 +270,30 @@ static int app_render(int argc, char **argv)
 
     if (o.stats) {
         printf("real=%s\nsize=%dx%d\ntime_ms=%ld\ndepth=%d\n", APP_REAL, o.width, o.height,
-               (long)o.time_ms, depth);
+               (long)o.time_ms, params.depth);
+        printf("mode=%s\n", o.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
+        if (o.mode == RT_MODE_ADAPTIVE)
+            printf("grid=%d\nthreshold=%ld.%04ld\n", o.grid, o.threshold / APP_SCALE,
+                   o.threshold % APP_SCALE);
+        printf("min_contrib=%ld.%04ld\n", o.min_contrib / APP_SCALE, o.min_contrib % APP_SCALE);
         printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000),
                (unsigned long long)(us % 1000));
         printf("pixels=%ld\n", (long)o.width * o.height);
+        printf("samples_traced=%lu\n", (unsigned long)stats.rays_primary);
         printf("rays_primary=%lu\nrays_shadow=%lu\nrays_reflect=%lu\nrays_refract=%lu\n",
                (unsigned long)stats.rays_primary, (unsigned long)stats.rays_shadow,
                (unsigned long)stats.rays_reflect, (unsigned long)stats.rays_refract);
+        if (o.mode == RT_MODE_ADAPTIVE) {
+            for (int l = 0, size = o.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
+                printf("squares_%d=%lu\nsplit_%d=%lu\n", size, (unsigned long)stats.squares[l],
+                       size, (unsigned long)stats.split[l]);
+            printf("split_object=%lu\nsplit_light=%lu\nsplit_secondary=%lu\nsplit_contrib=%lu\n",
+                   (unsigned long)stats.split_by[RT_SPLIT_OBJECT],
+                   (unsigned long)stats.split_by[RT_SPLIT_LIGHT],
+                   (unsigned long)stats.split_by[RT_SPLIT_SECONDARY],
+                   (unsigned long)stats.split_by[RT_SPLIT_CONTRIB]);
+            printf("work_bytes=%lu\n", work_bytes);
+        }
 #if FX_COUNT_EVENTS
         printf("fx_overflow=%lu\nfx_domain=%lu\n", fx_event_count[FX_EV_OVERFLOW],
                fx_event_count[FX_EV_DOMAIN]);

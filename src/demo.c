@@ -67,7 +67,7 @@ void rt_demo_scene(rt_scene *s, int32_t time_ms)
         phase += RT_DEMO_PERIOD_MS;
     unit sn, cs;
     u_sincos_deg(r_from_ratio(phase * 360, RT_DEMO_PERIOD_MS), &sn, &cs);
-    s->camera.eye = v3(r_mul_u(R(8.5), sn), R(5.0), r_mul_u(R(8.5), cs));
+    s->camera.eye = v3(r_mul_u(R(7.5), sn), R(7.5), r_mul_u(R(7.5), cs));
     s->camera.at = C(0, 0.6, 0);
     s->camera.up = C(0, 1, 0);
     s->camera.fov = R(50.0);

@@ -1,4 +1,4 @@
-/* render.c: whole frames: every pixel traced, colours turned into pixels. */
+/* render.c: whole frames: every pixel traced (full mode), or adaptively subsampled; pixel colours. */
 #include "rt.h"
 
 uint32_t rt_color_pixel(rt_color c)
@@ -6,15 +6,27 @@ uint32_t rt_color_pixel(rt_color c)
     return (uint32_t)r_to_byte(c.x) << 16 | (uint32_t)r_to_byte(c.y) << 8 | r_to_byte(c.z);
 }
 
-void rt_render_full(const rt_scene *s, const rt_view *v, int depth, uint32_t *pixels, int width,
-                    int height, int stride, rt_stats *stats)
+static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                        int stride, rt_stats *stats, uint8_t *traced)
 {
     rt_sample sample;
-    for (int y = 0; y < height; y++) {
+    for (int y = 0; y < v->height; y++) {
         uint32_t *row = pixels + (long)y * stride;
-        for (int x = 0; x < width; x++) {
-            rt_trace_pixel(s, v, x, y, depth, stats, &sample);
+        for (int x = 0; x < v->width; x++) {
+            rt_trace_pixel(s, v, p, x, y, stats, &sample);
             row[x] = rt_color_pixel(sample.color);
         }
+        if (traced)
+            for (int x = 0; x < v->width; x++)
+                traced[(long)y * v->width + x] = 1;
     }
+}
+
+void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+               int stride, rt_stats *stats, void *work, uint8_t *traced)
+{
+    if (p->mode == RT_MODE_ADAPTIVE)
+        rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced);
+    else
+        render_full(s, v, p, pixels, stride, stats, traced);
 }

@@ -16,9 +16,9 @@
 #define RT_MAX_LIGHTS 4
 #define RT_MAX_MATERIALS 16
 #define RT_MAX_DEPTH 8
-/* Nodes of the ray tree recorded per sample (primary hit first, then secondary hits in
- * depth-first order, refraction before reflection). */
-#define RT_SAMPLE_MAX_HITS 16
+/* Nodes of the ray tree stored per sample (primary hit first, then secondary hits in
+ * depth-first order, refraction before reflection). Further nodes are counted, not stored. */
+#define RT_SAMPLE_MAX_HITS 8
 /* Object id recorded for a ray that leaves the scene. */
 #define RT_NO_OBJECT 0xFF
 /* A light's state becomes 2 (highlight) when its specular term exceeds this. */
@@ -103,22 +103,59 @@ typedef struct rt_view {
 
 /* One node of the ray tree as adaptive subsampling compares it. */
 typedef struct rt_hit_rec {
-    uint8_t object; /* object index, or RT_NO_OBJECT */
-    uint8_t level;  /* recursion level, 0 = primary */
-    rt_color contrib; /* this node's local colour times its weight in the pixel */
+    uint8_t object;     /* object index, or RT_NO_OBJECT */
+    uint8_t level;      /* recursion level, 0 = primary */
+    uint8_t contrib[3]; /* this node's local colour times its weight in the pixel, 0..255 */
 } rt_hit_rec;
 
-/* Everything traced for one image point. */
+/* Everything traced for one image point: the record adaptive subsampling compares. Kept
+ * small (60 bytes) because a row of squares' worth of them is the working storage. */
 typedef struct rt_sample {
     rt_color color;
-    uint8_t nhits;
+    uint8_t nhits; /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
     uint8_t light_state[RT_MAX_LIGHTS]; /* at the primary hit: 0 unlit, 1 lit, 2 highlight */
-    rt_hit_rec hits[RT_SAMPLE_MAX_HITS];
+    uint8_t cell; /* texture cell at the primary hit (checker), 0 for other textures */
+    rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
 } rt_sample;
+
+/* Adaptive subsampling: square sizes are powers of two up to RT_GRID_MAX; level 0 is the
+ * --grid square, level k its halves k times over. */
+#define RT_GRID_MAX 16
+#define RT_GRID_LEVELS 4
+
+enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE };
+
+/* How a frame is rendered. */
+typedef struct rt_params {
+    int depth;        /* recursion limit, 0..RT_MAX_DEPTH */
+    real min_contrib; /* adaptive recursion control: secondary rays whose weight in the pixel
+                         is below this are not cast (0 = cast every ray) */
+    int mode;         /* enum rt_mode */
+    int grid;         /* adaptive: size of the top-level squares, 2, 4, 8 or 16 */
+    real threshold;   /* adaptive: split when a node's contribution differs by more than this
+                         between corners (colour units, 0..1; 1 disables the criterion) */
+} rt_params;
+
+/* Defaults of the command line (see README). */
+#define RT_DEFAULT_GRID 8
+#define RT_DEFAULT_THRESHOLD R(0.0625)
+#define RT_DEFAULT_MIN_CONTRIB R(0.01)
 
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
+    uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
+    uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
+    uint32_t split_by[5];             /* adaptive: splits by enum rt_split_reason */
 } rt_stats;
+
+/* Why the corners of a square disagree, in the order the criteria are checked. */
+enum rt_split_reason {
+    RT_SPLIT_NONE,      /* the corners agree: interpolate */
+    RT_SPLIT_OBJECT,    /* primary object, or its checker cell, differs */
+    RT_SPLIT_LIGHT,     /* a light's state differs */
+    RT_SPLIT_SECONDARY, /* the ray tree's shape or an object at a secondary level differs */
+    RT_SPLIT_CONTRIB    /* a node's contribution differs by more than the threshold */
+};
 
 /* Per-type interface: every shape is intersected and shaded through this table. */
 typedef struct rt_shape_ops {
@@ -139,23 +176,46 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
 /* Direction of the primary ray through the centre of pixel (x, y). */
 dir3 rt_view_ray(const rt_view *v, int x, int y);
 
-/* Traces the primary ray through pixel (x, y) with at most `depth` bounces; fills *out and
- * adds the rays cast to *stats. */
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, int x, int y, int depth, rt_stats *stats,
-                    rt_sample *out);
+/* Traces the primary ray through pixel (x, y) with at most p->depth bounces and p->min_contrib
+ * recursion control; fills *out and adds the rays cast to *stats. */
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    rt_stats *stats, rt_sample *out);
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
-/* Renders every pixel into `pixels` (0x00RRGGBB, `stride` pixels per row). */
-void rt_render_full(const rt_scene *s, const rt_view *v, int depth, uint32_t *pixels, int width,
-                    int height, int stride, rt_stats *stats);
+/* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
+ * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
+ * aligned for rt_sample. If `traced` is not NULL it gets one byte per pixel (`width` per row):
+ * 1 where a ray was traced, 0 elsewhere. */
+void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+               int stride, rt_stats *stats, void *work, uint8_t *traced);
+
+/* The adaptive mode of rt_render (subsample.c). */
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
+                        uint32_t *pixels, int stride, rt_stats *stats, void *work,
+                        uint8_t *traced);
+
+/* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
+ * two rows of square corners and the samples of one square; 0 in full mode. */
+unsigned long rt_render_work_size(const rt_params *p, int width);
+
+/* Compares the four corner samples of a square (in any order); thr8 is the contribution
+ * threshold in 1/255 colour steps. */
+enum rt_split_reason rt_corners_differ(const rt_sample *const corner[4], int thr8);
+
+/* Fills `cols` x `rows` pixels from dst (stride pixels per row) by bilinear interpolation of
+ * the colours at the corners of a w x h square: c00 at (0, 0), c10 at (w, 0), c01 at (0, h),
+ * c11 at (w, h). cols <= w + 1 and rows <= h + 1; corner pixels get their colour exactly. */
+void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
+                    rt_color c10, rt_color c01, rt_color c11);
 
 /* A colour as a 0x00RRGGBB pixel: each channel clamped to [0, 1] and rounded to 8 bits. */
 uint32_t rt_color_pixel(rt_color c);
 
-/* The diffuse colour of material m at the scene point p (its texture, if any). */
-rt_color rt_texture_color(const rt_material *m, vec3 p);
+/* The diffuse colour of material m at the scene point p (its texture, if any); *cell gets
+ * the id of the texture cell p lies in (checkerboard), 0 for textures without cells. */
+rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell);
 
 /* The built-in demo scene at the given time: a camera orbit around a few objects that use
  * every effect. Prepared (rt_scene_prepare) on return. */

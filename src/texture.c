@@ -2,9 +2,10 @@
 #include "noise.h"
 #include "rt.h"
 
-rt_color rt_texture_color(const rt_material *m, vec3 p)
+rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell)
 {
     const rt_texture *tx = &m->tex;
+    *cell = 0;
     if (tx->kind == RT_TEX_NONE)
         return m->diffuse;
 
@@ -17,6 +18,9 @@ rt_color rt_texture_color(const rt_material *m, vec3 p)
         r_floor_split(r_add(q.x, R(0.5)), &i);
         r_floor_split(r_add(q.y, R(0.5)), &j);
         r_floor_split(r_add(q.z, R(0.5)), &k);
+        /* Which cell, up to three cells away: two corners on cells of the same colour but
+         * different cells have a cell of the other colour between them. */
+        *cell = (uint8_t)(1 + ((i & 3) | (j & 3) << 2 | (k & 3) << 4));
         return ((i + j + k) & 1) ? tx->color2 : m->diffuse;
     }
     case RT_TEX_MARBLE: {

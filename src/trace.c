@@ -6,6 +6,7 @@ typedef struct trace_ctx {
     const rt_scene *scene;
     rt_stats *stats;
     rt_sample *sample;
+    real min_contrib; /* adaptive recursion control */
 } trace_ctx;
 
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
@@ -39,11 +40,15 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
 {
     rt_sample *sm = c->sample;
     if (sm->nhits < RT_SAMPLE_MAX_HITS) {
-        rt_hit_rec *h = &sm->hits[sm->nhits++];
+        rt_hit_rec *h = &sm->hits[sm->nhits];
         h->object = (uint8_t)object;
         h->level = (uint8_t)level;
-        h->contrib = contrib;
+        h->contrib[0] = r_to_byte(contrib.x);
+        h->contrib[1] = r_to_byte(contrib.y);
+        h->contrib[2] = r_to_byte(contrib.z);
     }
+    if (sm->nhits < 255)
+        sm->nhits++;
 }
 
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
@@ -70,7 +75,10 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
-    rt_color base = rt_texture_color(m, p);
+    uint8_t cell;
+    rt_color base = rt_texture_color(m, p, &cell);
+    if (level == 0)
+        c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
     for (int i = 0; i < s->nlights; i++) {
         const rt_light *li = &s->lights[i];
@@ -112,32 +120,35 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             dir3 rd;
             real eta = inside ? m->ior : m->ior_inv;
             if (d3_refract(d, n, eta, &rd)) {
-                c->stats->rays_refract++;
-                vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
-                rt_color tc = trace_ray(c, p_in, rd, depth - 1, r_mul(weight, m->transmit),
-                                        level + 1);
-                col = v3_madd(col, tc, m->transmit);
+                real wt = r_mul(weight, m->transmit);
+                if (wt >= c->min_contrib) { /* adaptive recursion control */
+                    c->stats->rays_refract++;
+                    vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
+                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1);
+                    col = v3_madd(col, tc, m->transmit);
+                }
             } else {
                 kr = r_add(kr, m->transmit); /* total internal reflection */
             }
         }
-        if (kr > 0) {
+        real wr = r_mul(weight, kr);
+        if (kr > 0 && wr >= c->min_contrib) {
             c->stats->rays_reflect++;
-            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, r_mul(weight, kr),
-                                    level + 1);
+            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1);
             col = v3_madd(col, rc, kr);
         }
     }
     return col;
 }
 
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, int x, int y, int depth, rt_stats *stats,
-                    rt_sample *out)
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    rt_stats *stats, rt_sample *out)
 {
-    trace_ctx c = {s, stats, out};
+    trace_ctx c = {s, stats, out, p->min_contrib};
     out->nhits = 0;
+    out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
         out->light_state[i] = 0;
     stats->rays_primary++;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), p->depth, R_ONE, 0);
 }

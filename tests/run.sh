@@ -16,10 +16,10 @@ fail() { failed=$((failed + 1)); echo "FAIL $*"; }
 
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise; do
+  for t in test_numeric test_shapes test_noise test_subsample; do
     if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
-      grep -E '^(noise|fbm|sphere|far|numeric)' "$T/$v-$t.log" | sed 's/^/       /'
+      grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib)' "$T/$v-$t.log" | sed 's/^/       /'
     else
       fail "$v/$t"
       sed 's/^/       /' "$T/$v-$t.log" | tail -30
@@ -28,24 +28,42 @@ for v in san-fixed san-float; do
 done
 
 # ---- frames: fixed vs float on the demo scene --------------------------------------------------
-# The bound: PSNR >= 40 dB and at most 0.5% of pixels with a channel off by more than 8.
-for time in 0 6 12.5 18; do
-  f=$T/float-$time.png x=$T/fixed-$time.png
-  if ! $B/rt-float render --time "$time" -o "$f" 2>/dev/null ||
-     ! $B/rt-fixed render --time "$time" -o "$x" 2>/dev/null; then
-    fail "render demo at t=$time"
-    continue
-  fi
-  line=$($B/rt-cmp "$x" "$f" --diff "$T/diff-$time.png")
+# Full mode (every pixel traced, every ray cast): PSNR >= 40 dB and at most 0.5% of pixels with a
+# channel off by more than 8. Adaptive mode (the default): PSNR >= 38 dB.
+cmp_frames() { # label fixed.png float.png min-psnr max-over8-per-mille
+  local line psnr over8 pixels
+  line=$($B/rt-cmp "$2" "$3" --diff "${2%.png}-diff.png")
   psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
   over8=$(sed -n 's/.*over8=\([0-9]*\).*/\1/p' <<<"$line")
   pixels=$(sed -n 's/.*pixels=\([0-9]*\).*/\1/p' <<<"$line")
-  if [ -n "$psnr" ] && awk -v p="$psnr" -v o="$over8" -v n="$pixels" \
-       'BEGIN { exit !((p == "inf" || p >= 40) && o * 200 <= n) }'; then
-    pass "fixed vs float, demo t=${time}s 320x240: $line"
+  if [ -n "$psnr" ] && awk -v p="$psnr" -v o="$over8" -v n="$pixels" -v min="$4" -v pm="$5" \
+       'BEGIN { exit !((p == "inf" || p >= min) && o * 1000 <= n * pm) }'; then
+    pass "$1: $line"
   else
-    fail "fixed vs float, demo t=${time}s 320x240: $line (want psnr_db >= 40, over8 <= 0.5%; see $T/diff-$time.png)"
+    fail "$1: $line (want psnr_db >= $4, over8 <= $5 per mille; see ${2%.png}-diff.png)"
   fi
+}
+for time in 0 6 12.5 18; do
+  for mode in full adaptive; do
+    f=$T/float-$mode-$time.png x=$T/fixed-$mode-$time.png
+    if ! $B/rt-float render --mode $mode --time "$time" -o "$f" 2>/dev/null ||
+       ! $B/rt-fixed render --mode $mode --time "$time" -o "$x" 2>/dev/null; then
+      fail "render demo at t=$time in $mode mode"
+      continue
+    fi
+    if [ $mode = full ]; then
+      cmp_frames "fixed vs float, full mode, demo t=${time}s 320x240" "$x" "$f" 40 5
+    else
+      cmp_frames "fixed vs float, adaptive mode, demo t=${time}s 320x240" "$x" "$f" 38 10
+    fi
+  done
+done
+# Adaptive mode with every criterion at its finest is full mode, but for interpolated squares
+# whose corners agree exactly.
+for real in fixed float; do
+  $B/rt-$real render --mode full --min-contrib 0 --time 9 -o "$T/$real-ref.png" 2>/dev/null
+  $B/rt-$real render --threshold 0 --min-contrib 0 --time 9 -o "$T/$real-thr0.png" 2>/dev/null
+  cmp_frames "$real: adaptive with --threshold 0 vs full, t=9s" "$T/$real-thr0.png" "$T/$real-ref.png" 50 1
 done
 
 # ---- determinism: the same frame twice gives the same bytes ------------------------------------
@@ -57,6 +75,15 @@ for real in fixed float; do
       pass "deterministic: rt-$real renders t=3.5 twice to identical .$ext bytes"
     else
       fail "deterministic: rt-$real renders t=3.5 twice to different .$ext files"
+    fi
+  done
+  for opts in "--mode full" "--grid 16 --threshold 0.2" "--grid 2 --size 97x61"; do
+    $B/rt-$real render --time 7.25 --size 150x100 $opts -o "$T/det3-$real.ppm" 2>/dev/null
+    $B/rt-$real render --time 7.25 --size 150x100 $opts -o "$T/det4-$real.ppm" 2>/dev/null
+    if [ -s "$T/det3-$real.ppm" ] && cmp -s "$T/det3-$real.ppm" "$T/det4-$real.ppm"; then
+      pass "deterministic: rt-$real $opts renders twice to identical bytes"
+    else
+      fail "deterministic: rt-$real $opts renders twice to different files"
     fi
   done
 done
@@ -81,15 +108,40 @@ for real in fixed float; do
 done
 
 # ---- --stats --------------------------------------------------------------------------------------
-stats=$($B/rt-fixed render --size 80x60 --stats -o "$T/stats.png" 2>/dev/null)
+stats=$($B/rt-fixed render --mode full --size 80x60 --stats -o "$T/stats.png" 2>/dev/null)
 missing=""
-for key in ms pixels rays_primary rays_shadow rays_reflect rays_refract; do
+for key in ms pixels samples_traced rays_primary rays_shadow rays_reflect rays_refract; do
   grep -q "^$key=[0-9.]*$" <<<"$stats" || missing="$missing $key"
 done
-if [ -z "$missing" ] && grep -q '^pixels=4800$' <<<"$stats" && grep -q '^rays_primary=4800$' <<<"$stats"; then
-  pass "--stats prints ms, pixels, rays_primary/shadow/reflect/refract"
+if [ -z "$missing" ] && grep -q '^pixels=4800$' <<<"$stats" && grep -q '^samples_traced=4800$' <<<"$stats" &&
+   grep -q '^mode=full$' <<<"$stats"; then
+  pass "--stats in full mode: every pixel traced, rays by kind"
 else
-  fail "--stats output lacks:$missing"
+  fail "--stats (full mode) output lacks:$missing"
+fi
+stats=$($B/rt-fixed render --size 320x240 --time 3 --stats -o "$T/stats-ad.ppm" 2>/dev/null)
+missing=""
+for key in samples_traced rays_primary rays_shadow rays_reflect rays_refract squares_8 split_8 \
+           squares_4 split_4 squares_2 split_2 split_object split_light split_secondary \
+           split_contrib work_bytes; do
+  grep -q "^$key=[0-9]*$" <<<"$stats" || missing="$missing $key"
+done
+samples=$(sed -n 's/^samples_traced=//p' <<<"$stats")
+sq8=$(sed -n 's/^squares_8=//p' <<<"$stats")
+if [ -z "$missing" ] && grep -q '^mode=adaptive$' <<<"$stats" && grep -q '^grid=8$' <<<"$stats" &&
+   [ "$sq8" = 1200 ] && [ "$samples" -lt 76800 ]; then
+  pass "--stats in adaptive mode: $samples of 76800 points traced, 1200 8x8 squares, splits per level and reason"
+else
+  fail "--stats (adaptive mode) output lacks:$missing (samples=$samples squares_8=$sq8)"
+fi
+# --show-samples paints the traced points white: as many changed pixels as points traced, at most
+$B/rt-fixed render --size 320x240 --time 3 --show-samples -o "$T/dots.ppm" 2>/dev/null
+line=$($B/rt-cmp "$T/dots.ppm" "$T/stats-ad.ppm")
+changed=$(sed -n 's/.*differing=\([0-9]*\).*/\1/p' <<<"$line")
+if [ -n "$changed" ] && [ "$changed" -le "$samples" ] && [ $((changed * 10)) -ge $((samples * 9)) ]; then
+  pass "--show-samples marks $changed pixels for $samples traced points"
+else
+  fail "--show-samples changed '$changed' pixels for $samples traced points"
 fi
 stats=$($B/rt-float render --size 80x60 --depth 0 --stats -o "$T/stats0.png" 2>/dev/null)
 if grep -q '^rays_reflect=0$' <<<"$stats" && grep -q '^rays_refract=0$' <<<"$stats" && grep -q '^depth=0$' <<<"$stats"; then
@@ -105,7 +157,7 @@ if [ "$line" = "psnr_db=inf max_abs=0 differing=0 over8=0 pixels=30000" ]; then
 else
   fail "rt-cmp on identical images printed: $line"
 fi
-if [ -s "$T/diff-6.png" ]; then pass "rt-cmp --diff writes the difference picture"; else fail "rt-cmp --diff wrote nothing"; fi
+if [ -s "$T/fixed-full-6-diff.png" ]; then pass "rt-cmp --diff writes the difference picture"; else fail "rt-cmp --diff wrote nothing"; fi
 
 # ---- bad input: one line on stderr, exit 2 (or 1 for a failed write), nothing left behind -------
 expect_error() { # expected-status message-pattern command...
@@ -133,6 +185,15 @@ expect_error 2 "expected seconds" $R render --time abc -o "$T/x.png"
 expect_error 2 "expected a frame number" $R render --frame 1e3 -o "$T/x.png"
 expect_error 2 "expected a recursion limit" $R render --depth 9 -o "$T/x.png"
 expect_error 2 "either --time or --frame" $R render --time 1 --frame 2 -o "$T/x.png"
+expect_error 2 "expected full or adaptive" $R render --mode fast -o "$T/x.png"
+expect_error 2 "expected a square size" $R render --grid 3 -o "$T/x.png"
+expect_error 2 "expected a square size" $R render --grid 32 -o "$T/x.png"
+expect_error 2 "expected a square size" $R render --grid 1 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render --threshold 1.5 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render --threshold -0.1 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render --min-contrib 0.00001 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render --min-contrib abc -o "$T/x.png"
+expect_error 2 "needs a value" $R render --grid
 expect_error 2 "needs a value" $R render -o
 expect_error 2 ".png or .ppm" $R render -o "$T/x.jpg"
 expect_error 1 "cannot write" $R render --size 8x8 -o "$T/no/such/dir/x.png"

@@ -226,15 +226,16 @@ static void test_sample_record(void **state)
     rt_view_init(&v, &s.camera, 64, 64);
     rt_stats st = {0};
     rt_sample sm;
+    const rt_params prm = {.depth = 3};
 
     /* centre pixel: the sphere, lit head-on with a highlight */
-    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    rt_trace_pixel(&s, &v, &prm, 32, 32, &st, &sm);
     assert_int_equal(sm.nhits, 1);
     assert_int_equal(sm.hits[0].object, 0);
     assert_int_equal(sm.hits[0].level, 0);
     assert_int_equal(sm.light_state[0], 2);
     /* corner pixel: background */
-    rt_trace_pixel(&s, &v, 0, 0, 3, &st, &sm);
+    rt_trace_pixel(&s, &v, &prm, 0, 0, &st, &sm);
     assert_int_equal(sm.nhits, 1);
     assert_int_equal(sm.hits[0].object, RT_NO_OBJECT);
     assert_int_equal(rt_color_pixel(sm.color), rt_color_pixel(s.background));
@@ -246,7 +247,7 @@ static void test_sample_record(void **state)
     s.camera.eye = vd(0, 6, 0);
     rt_scene_prepare(&s);
     rt_view_init(&v, &s.camera, 64, 64);
-    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    rt_trace_pixel(&s, &v, &prm, 32, 32, &st, &sm);
     assert_int_equal(sm.hits[0].object, 0);
     assert_int_equal(sm.light_state[0], 0);
 
@@ -255,7 +256,7 @@ static void test_sample_record(void **state)
     rt_scene_prepare(&s);
     rt_view_init(&v, &s.camera, 64, 64);
     st = (rt_stats){0};
-    rt_trace_pixel(&s, &v, 32, 32, 3, &st, &sm);
+    rt_trace_pixel(&s, &v, &prm, 32, 32, &st, &sm);
     assert_int_equal(sm.hits[0].object, 1);
     assert_true(sm.nhits >= 2);
     assert_int_equal(sm.hits[1].level, 1);
@@ -293,7 +294,8 @@ static void test_far_mirror_chain(void **state)
     rt_stats st = {0};
     static uint32_t pixels[32 * 32];
     fx_events_reset();
-    rt_render_full(&s, &v, RT_MAX_DEPTH, pixels, 32, 32, 32, &st);
+    const rt_params prm = {.depth = RT_MAX_DEPTH, .mode = RT_MODE_FULL};
+    rt_render(&s, &v, &prm, pixels, 32, &st, NULL, NULL);
     print_message("far mirror chain: %lu reflected rays, %lu overflow events\n",
                   (unsigned long)st.rays_reflect, fx_event_count[FX_EV_OVERFLOW]);
     assert_true(st.rays_reflect > 0);

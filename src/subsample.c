@@ -1,0 +1,243 @@
+/* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest. */
+#include <string.h>
+
+#include "rt.h"
+
+/* Squares along a side of n pixels: corners at 0, g, 2g, ... and at the last pixel, n - 1
+ * (so the last square may be narrower); at least one square, even for n = 1. */
+static int ss_count(int n, int g)
+{
+    int k = (n - 1 + g - 1) / g;
+    return k > 0 ? k : 1;
+}
+
+/* Pixel coordinate of corner i along a side of n pixels. */
+static int ss_corner(int i, int g, int n)
+{
+    int c = i * g;
+    return c < n - 1 ? c : n - 1;
+}
+
+unsigned long rt_render_work_size(const rt_params *p, int width)
+{
+    if (p->mode != RT_MODE_ADAPTIVE)
+        return 0;
+    unsigned long row = (unsigned long)ss_count(width, p->grid) + 1;
+    unsigned long side = (unsigned long)p->grid + 1;
+    return (2 * row + side * side) * sizeof(rt_sample);
+}
+
+enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
+{
+    const rt_sample *a = k[0];
+    for (int i = 1; i < 4; i++)
+        if (k[i]->hits[0].object != a->hits[0].object || k[i]->cell != a->cell)
+            return RT_SPLIT_OBJECT;
+    for (int i = 1; i < 4; i++)
+        if (memcmp(k[i]->light_state, a->light_state, sizeof a->light_state) != 0)
+            return RT_SPLIT_LIGHT;
+    int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+    for (int i = 1; i < 4; i++) {
+        if (k[i]->nhits != a->nhits)
+            return RT_SPLIT_SECONDARY;
+        for (int j = 1; j < n; j++)
+            if (k[i]->hits[j].object != a->hits[j].object ||
+                k[i]->hits[j].level != a->hits[j].level)
+                return RT_SPLIT_SECONDARY;
+    }
+    for (int j = 0; j < n; j++) {
+        for (int ch = 0; ch < 3; ch++) {
+            int lo = 255, hi = 0;
+            for (int i = 0; i < 4; i++) {
+                int c = k[i]->hits[j].contrib[ch];
+                lo = c < lo ? c : lo;
+                hi = c > hi ? c : hi;
+            }
+            if (hi - lo > thr8)
+                return RT_SPLIT_CONTRIB;
+        }
+    }
+    return RT_SPLIT_NONE;
+}
+
+static rt_color ss_lerp(rt_color a, rt_color b, real t)
+{
+    return v3(r_lerp(a.x, b.x, t), r_lerp(a.y, b.y, t), r_lerp(a.z, b.z, t));
+}
+
+/* Bilinear fill with the weights wx[i] = i / w and wy[j] = j / h given. */
+static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows, const real *wx,
+                    const real *wy, rt_color c00, rt_color c10, rt_color c01, rt_color c11)
+{
+    for (int j = 0; j < rows; j++) {
+        rt_color l, r;
+        if (j == 0) {
+            l = c00;
+            r = c10;
+        } else if (j == h) {
+            l = c01;
+            r = c11;
+        } else {
+            l = ss_lerp(c00, c01, wy[j]);
+            r = ss_lerp(c10, c11, wy[j]);
+        }
+        uint32_t *row = dst + (long)j * stride;
+        for (int i = 0; i < cols; i++)
+            row[i] = rt_color_pixel(i == 0 ? l : i == w ? r : ss_lerp(l, r, wx[i]));
+    }
+}
+
+void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
+                    rt_color c10, rt_color c01, rt_color c11)
+{
+    real wx[RT_GRID_MAX + 1], wy[RT_GRID_MAX + 1];
+    if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
+        return;
+    for (int i = 1; i < w; i++)
+        wx[i] = r_from_ratio(i, w);
+    for (int j = 1; j < h; j++)
+        wy[j] = r_from_ratio(j, h);
+    ss_fill(dst, stride, w, h, cols, rows, wx, wy, c00, c10, c01, c11);
+}
+
+/* One frame's adaptive rendering state. */
+typedef struct ss_ctx {
+    const rt_scene *scene;
+    const rt_view *view;
+    const rt_params *params;
+    rt_stats *stats;
+    uint32_t *pixels;
+    int stride;
+    uint8_t *traced;
+    int thr8;       /* contribution threshold in 1/255 steps */
+    rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
+    int lstride;    /* grid + 1 */
+    int sx, sy;     /* pixel of the lattice's (0, 0) */
+    real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
+} ss_ctx;
+
+static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
+{
+    rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
+    /* Interpolate what is shown: colours clamped as the pixel will be. */
+    out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
+                    r_clamp(out->color.z, 0, R_ONE));
+    if (c->traced)
+        c->traced[(long)y * c->view->width + x] = 1;
+}
+
+/* The sample at pixel (x, y) of the current square, traced on first use. */
+static const rt_sample *ss_at(ss_ctx *c, int x, int y)
+{
+    rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
+    if (sm->nhits == 0)
+        ss_trace(c, x, y, sm);
+    return sm;
+}
+
+/* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the
+ * pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its right column and bottom row where it
+ * ends the frame (own_r, own_b). Every pixel is thus written once, whatever the order. */
+static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int own_r, int own_b)
+{
+    const rt_sample *k[4] = {ss_at(c, x0, y0), ss_at(c, x0 + w, y0), ss_at(c, x0, y0 + h),
+                             ss_at(c, x0 + w, y0 + h)};
+    if (w > 1 || h > 1) { /* some pixel is not a corner */
+        int li = level < RT_GRID_LEVELS ? level : RT_GRID_LEVELS - 1;
+        c->stats->squares[li]++;
+        enum rt_split_reason why = rt_corners_differ(k, c->thr8);
+        if (why != RT_SPLIT_NONE) {
+            c->stats->split[li]++;
+            c->stats->split_by[why]++;
+            int xs[3] = {x0, x0 + w, x0 + w}, ys[3] = {y0, y0 + h, y0 + h};
+            int nx = 1, ny = 1;
+            if (w >= 2) {
+                xs[1] = x0 + w / 2;
+                nx = 2;
+            }
+            if (h >= 2) {
+                ys[1] = y0 + h / 2;
+                ny = 2;
+            }
+            for (int j = 0; j < ny; j++)
+                for (int i = 0; i < nx; i++)
+                    ss_square(c, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j], level + 1,
+                              i == nx - 1 && own_r, j == ny - 1 && own_b);
+            return;
+        }
+    }
+    int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
+    uint32_t *dst = c->pixels + (long)y0 * c->stride + x0;
+    ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], k[0]->color, k[1]->color,
+            k[2]->color, k[3]->color);
+    /* Points traced for a neighbour's decisions show their traced colour. */
+    for (int j = 0; j < rows; j++) {
+        const rt_sample *sm = &c->lat[(y0 - c->sy + j) * c->lstride + (x0 - c->sx)];
+        for (int i = 0; i < cols; i++)
+            if (sm[i].nhits)
+                dst[(long)j * c->stride + i] = rt_color_pixel(sm[i].color);
+    }
+}
+
+/* Traces the top-level corners of row y into row[0..ncols]. */
+static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
+{
+    int g = c->params->grid, width = c->view->width;
+    for (int i = 0; i <= ncols; i++) {
+        int x = ss_corner(i, g, width);
+        if (i > 0 && x == ss_corner(i - 1, g, width))
+            row[i] = row[i - 1]; /* a one-pixel-wide frame */
+        else
+            ss_trace(c, x, y, &row[i]);
+    }
+}
+
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
+                        uint32_t *pixels, int stride, rt_stats *stats, void *work,
+                        uint8_t *traced)
+{
+    const int g = p->grid, width = v->width, height = v->height;
+    ss_ctx c = {.scene = s, .view = v, .params = p, .stats = stats, .pixels = pixels,
+                .stride = stride, .traced = traced, .thr8 = r_to_byte(p->threshold),
+                .lstride = g + 1};
+    for (int n = 1; n <= g; n++)
+        for (int i = 0; i <= n; i++)
+            c.wt[n][i] = r_from_ratio(i, n);
+    if (traced)
+        memset(traced, 0, (size_t)width * (size_t)height);
+
+    int ncols = ss_count(width, g), nrows = ss_count(height, g);
+    rt_sample *top = work, *bot = top + ncols + 1;
+    c.lat = bot + ncols + 1;
+    ss_corner_row(&c, top, ncols, 0);
+    for (int r = 0; r < nrows; r++) {
+        int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
+        if (h == 0)
+            memcpy(bot, top, (size_t)(ncols + 1) * sizeof *top); /* a one-pixel-high frame */
+        else
+            ss_corner_row(&c, bot, ncols, y0 + h);
+        c.sy = y0;
+        int prev_w = -1;
+        for (int i = 0; i < ncols; i++) {
+            int x0 = ss_corner(i, g, width), w = ss_corner(i + 1, g, width) - x0;
+            c.sx = x0;
+            for (int ly = 0; ly <= h; ly++) {
+                rt_sample *row = c.lat + ly * c.lstride;
+                /* The left edge is the square before's right edge: keep what it traced. */
+                if (prev_w >= 0)
+                    row[0] = row[prev_w];
+                for (int lx = prev_w >= 0 ? 1 : 0; lx <= w; lx++)
+                    row[lx].nhits = 0;
+            }
+            c.lat[0] = top[i];
+            c.lat[w] = top[i + 1];
+            c.lat[h * c.lstride] = bot[i];
+            c.lat[h * c.lstride + w] = bot[i + 1];
+            ss_square(&c, x0, y0, w, h, 0, i == ncols - 1, r == nrows - 1);
+            prev_w = w;
+        }
+        rt_sample *t = top;
+        top = bot;
+        bot = t;
+    }
+}

@@ -1,0 +1,428 @@
+/* test_subsample.c: adaptive subsampling: split criteria, interpolation, edges followed down to single pixels. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "rt.h"
+
+#if REAL_FIXED
+static real from_d(double x) { return (real)llround(x * 65536.0); }
+#else
+static real from_d(double x) { return (real)x; }
+#endif
+
+static vec3 vd(double x, double y, double z)
+{
+    return v3(from_d(x), from_d(y), from_d(z));
+}
+
+/* ---- split criteria on constructed corner records ------------------------------------------ */
+
+/* A sample on object 1 with a reflection of object 2, both lights lit. */
+static rt_sample base_sample(void)
+{
+    rt_sample s;
+    memset(&s, 0, sizeof s);
+    s.color = vd(0.5, 0.5, 0.5);
+    s.nhits = 2;
+    s.light_state[0] = 1;
+    s.light_state[1] = 1;
+    s.hits[0] = (rt_hit_rec){.object = 1, .level = 0, .contrib = {100, 120, 140}};
+    s.hits[1] = (rt_hit_rec){.object = 2, .level = 1, .contrib = {30, 30, 30}};
+    return s;
+}
+
+static enum rt_split_reason compare_with(const rt_sample *odd, int which, int thr8)
+{
+    rt_sample a = base_sample();
+    const rt_sample *k[4] = {&a, &a, &a, &a};
+    k[which] = odd;
+    return rt_corners_differ(k, thr8);
+}
+
+static void test_criteria(void **state)
+{
+    (void)state;
+    rt_sample s = base_sample();
+    /* agreeing corners do not split, even with colours that differ (they are interpolated) */
+    assert_int_equal(compare_with(&s, 2, 16), RT_SPLIT_NONE);
+    s.color = vd(0.9, 0.1, 0.3);
+    assert_int_equal(compare_with(&s, 2, 16), RT_SPLIT_NONE);
+
+    for (int which = 0; which < 4; which++) {
+        /* 1. primary object */
+        s = base_sample();
+        s.hits[0].object = 3;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
+        s = base_sample();
+        s.hits[0].object = RT_NO_OBJECT;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
+        /* ... or another cell of its checkerboard */
+        s = base_sample();
+        s.cell = 5;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
+        /* 2. any light's state: shadow edge, highlight */
+        s = base_sample();
+        s.light_state[1] = 0;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        s = base_sample();
+        s.light_state[0] = 2;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        /* 3. an object at a secondary level, or the shape of the ray tree */
+        s = base_sample();
+        s.hits[1].object = 4;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        s = base_sample();
+        s.hits[1].level = 2;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        s = base_sample();
+        s.nhits = 3;
+        s.hits[2] = (rt_hit_rec){.object = 5, .level = 1};
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        /* nodes beyond the stored ones still count through nhits */
+        rt_sample big = base_sample(), big2;
+        big.nhits = RT_SAMPLE_MAX_HITS + 3;
+        for (int j = 2; j < RT_SAMPLE_MAX_HITS; j++)
+            big.hits[j] = (rt_hit_rec){.object = 2, .level = 1};
+        big2 = big;
+        big2.nhits = RT_SAMPLE_MAX_HITS + 4;
+        const rt_sample *kb[4] = {&big, &big, &big, &big};
+        assert_int_equal(rt_corners_differ(kb, 16), RT_SPLIT_NONE);
+        kb[which] = &big2;
+        assert_int_equal(rt_corners_differ(kb, 16), RT_SPLIT_SECONDARY);
+        /* 4. a contribution beyond the threshold, at the primary or a secondary level */
+        s = base_sample();
+        s.hits[0].contrib[1] = 120 + 16;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_NONE);
+        s.hits[0].contrib[1] = 120 + 17;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_CONTRIB);
+        s = base_sample();
+        s.hits[1].contrib[2] = 30 - 17;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_CONTRIB);
+        assert_int_equal(compare_with(&s, which, 17), RT_SPLIT_NONE);
+        assert_int_equal(compare_with(&s, which, 255), RT_SPLIT_NONE);
+        /* the order of the checks: object before light before secondary before contribution */
+        s = base_sample();
+        s.hits[1].object = 4;
+        s.hits[0].contrib[0] = 0;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        s.light_state[0] = 0;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        s.hits[0].object = 7;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
+    }
+}
+
+/* ---- interpolation ------------------------------------------------------------------------- */
+
+/* A linear gradient over a square comes out exactly, within one 8-bit level. */
+static void test_interpolate_gradient(void **state)
+{
+    (void)state;
+    static uint32_t px[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    const int sizes[][2] = {{1, 1}, {2, 2}, {4, 4}, {8, 8}, {16, 16}, {7, 3}, {5, 16}, {16, 1},
+                            {0, 4}, {3, 0}, {13, 11}};
+    int worst = 0;
+    for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
+        int w = sizes[n][0], h = sizes[n][1];
+        /* channel value a + bx*x/w + by*y/h, one gradient per channel */
+        const double a[3] = {0.1, 0.9, 0.3}, bx[3] = {0.8, -0.7, 0.0}, by[3] = {0.05, 0.1, 0.6};
+        rt_color c[4];
+        for (int k = 0; k < 4; k++) {
+            double v[3];
+            for (int ch = 0; ch < 3; ch++)
+                v[ch] = a[ch] + bx[ch] * (k & 1) + by[ch] * (k >> 1);
+            c[k] = vd(v[0], v[1], v[2]);
+        }
+        for (size_t i = 0; i < sizeof px / sizeof px[0]; i++)
+            px[i] = 0xDEADBEEF;
+        rt_interpolate(px, RT_GRID_MAX + 1, w, h, w + 1, h + 1, c[0], c[1], c[2], c[3]);
+        for (int y = 0; y <= h; y++) {
+            for (int x = 0; x <= w; x++) {
+                uint32_t p = px[y * (RT_GRID_MAX + 1) + x];
+                assert_int_equal(p >> 24, 0); /* written */
+                for (int ch = 0; ch < 3; ch++) {
+                    double fx = w ? (double)x / w : 0, fy = h ? (double)y / h : 0;
+                    double want = (a[ch] + bx[ch] * fx + by[ch] * fy) * 255.0;
+                    int got = (int)(p >> (16 - 8 * ch) & 0xFF);
+                    if (fabs(got - want) > worst)
+                        worst = (int)ceil(fabs(got - want));
+                    assert_true(fabs(got - want) <= 1.0);
+                }
+            }
+        }
+    }
+    /* outside the region asked for, nothing is touched */
+    for (size_t i = 0; i < sizeof px / sizeof px[0]; i++)
+        px[i] = 0xDEADBEEF;
+    rt_interpolate(px, RT_GRID_MAX + 1, 8, 8, 8, 8, vd(0, 0, 0), vd(1, 1, 1), vd(0, 0, 0),
+                   vd(1, 1, 1));
+    assert_int_equal(px[8], 0xDEADBEEF);                    /* column 8 of row 0 */
+    assert_int_equal(px[8 * (RT_GRID_MAX + 1)], 0xDEADBEEF); /* row 8 */
+    assert_int_equal(px[7] & 0xFF, 223);                     /* 7/8 of the way: 223.1 */
+    print_message("interpolation: worst error %d level(s)\n", worst);
+}
+
+/* ---- rendered cases ------------------------------------------------------------------------ */
+
+#define W 96
+#define H 72
+
+static rt_sample full[H][W];
+static uint32_t fullpx[H * W], adpx[H * W];
+static uint8_t traced[H * W];
+static rt_sample work[2 * (W / 2 + 2) + (RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+
+static void scene_base(rt_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->background = vd(0.1, 0.15, 0.3);
+    s->ambient = vd(0.2, 0.2, 0.2);
+    s->depth = 4;
+    s->lights[0] = (rt_light){vd(4, 10, 6), vd(0.9, 0.9, 0.9)};
+    s->nlights = 1;
+}
+
+static int add_material(rt_scene *s, rt_material m)
+{
+    if (m.ior == 0)
+        m.ior = from_d(1.0);
+    s->materials[s->nmaterials] = m;
+    return s->nmaterials++;
+}
+
+static void add_sphere(rt_scene *s, int mat, double x, double y, double z, double r)
+{
+    rt_object *o = &s->objects[s->nobjects++];
+    *o = (rt_object){.kind = RT_SPHERE, .material = (uint8_t)mat};
+    o->center = vd(x, y, z);
+    o->radius = from_d(r);
+}
+
+static void add_floor(rt_scene *s, int mat)
+{
+    rt_object *o = &s->objects[s->nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mat};
+    o->axis = vd(0, 1, 0);
+}
+
+/* Renders the scene in full (every sample kept) and adaptive mode. For every pair of
+ * neighbouring pixels whose full samples differ for `reason`, checks that the adaptive render
+ * traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
+ * the full render's colours there. Returns the number of such pairs. */
+static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
+                      const char *name)
+{
+    rt_scene_prepare(s);
+    rt_view v;
+    rt_view_init(&v, &s->camera, W, H);
+    const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
+    const rt_params pa = {.depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8,
+                          .threshold = RT_DEFAULT_THRESHOLD};
+    rt_stats st = {0}, sa = {0};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            rt_trace_pixel(s, &v, &pf, x, y, &st, &full[y][x]);
+    rt_render(s, &v, &pf, fullpx, W, &st, NULL, NULL);
+    assert_true(rt_render_work_size(&pa, W) <= sizeof work);
+    rt_render(s, &v, &pa, adpx, W, &sa, work, traced);
+
+    int pairs = 0, both = 0, exact = 0, other_pairs = 0;
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            for (int d = 0; d < 2; d++) {
+                int x2 = x + (d == 0), y2 = y + (d == 1);
+                if (x2 >= W || y2 >= H)
+                    continue;
+                const rt_sample *k[4] = {&full[y][x], &full[y][x], &full[y2][x2],
+                                         &full[y2][x2]};
+                enum rt_split_reason why = rt_corners_differ(k, 255);
+                if (why == RT_SPLIT_NONE)
+                    continue;
+                if (why != reason) {
+                    other_pairs++;
+                    continue;
+                }
+                pairs++;
+                int p = y * W + x, q = y2 * W + x2;
+                if (traced[p] && traced[q]) {
+                    both++;
+                    exact += adpx[p] == fullpx[p] && adpx[q] == fullpx[q];
+                }
+            }
+        }
+    }
+    print_message("%s: %d neighbour pairs differ by that criterion (%d by others), %d traced "
+                  "on both sides, %d of those exact; %lu of %d pixels traced, %lu 2x2 squares "
+                  "split\n",
+                  name, pairs, other_pairs, both, exact, (unsigned long)sa.rays_primary, W * H,
+                  (unsigned long)sa.split[2]);
+    assert_true(pairs >= 40); /* the scene does show that kind of edge */
+    /* Every pixel on either side of it was traced, except where a curved outline bulges
+     * between two corners that agree: what no corner sees, no criterion can split for. */
+    assert_true(both * 100 >= pairs * min_percent);
+    assert_int_equal(exact, both); /* and a traced pixel shows its traced colour */
+    assert_true(sa.split[2] > 0);  /* squares were split down to single pixels */
+    assert_true(sa.rays_primary < (uint32_t)(W * H)); /* and not everything was traced */
+    return pairs;
+}
+
+/* The outline of a sphere against the background. */
+static void test_object_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int m = add_material(&s, (rt_material){.diffuse = vd(0.8, 0.3, 0.2), .ambient = from_d(1)});
+    add_sphere(&s, m, 0.3, 0.2, -10, 2.5);
+    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), from_d(40)};
+    check_edge(&s, RT_SPLIT_OBJECT, 100, "object edge");
+}
+
+/* The shadow of a sphere on a matte floor (no highlight, no reflection). */
+static void test_shadow_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int ms = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.6, 0.2), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    add_sphere(&s, ms, -0.5, 2.0, 0, 1.0);
+    s.lights[0].pos = vd(-3, 9, -2);
+    s.camera = (rt_camera){vd(0, 7, 5), vd(0.5, 0, 0.5), vd(0, 1, 0), from_d(45)};
+    check_edge(&s, RT_SPLIT_LIGHT, 100, "shadow edge");
+}
+
+/* A sphere seen only in a mirror floor: the camera looks down and the sphere is above its view,
+ * so every difference is at the secondary level. */
+static void test_reflected_outline(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1),
+                                            .reflect = from_d(0.7)});
+    int ms = add_material(&s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    add_sphere(&s, ms, 0, 3.5, -3, 1.0);
+    s.lights[0].pos = vd(0, 20, 20); /* the sphere's shadow falls behind the view */
+    s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
+    check_edge(&s, RT_SPLIT_SECONDARY, 90, "reflected outline");
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            assert_int_equal(full[y][x].hits[0].object, 0); /* the sphere is not seen directly */
+}
+
+/* Every frame size, multiple of the grid or not, down to a single pixel: every pixel written,
+ * the corners of the grid traced, and a flat picture comes out exactly as in full mode. */
+static void test_sizes(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int m = add_material(&s, (rt_material){.diffuse = vd(0.8, 0.3, 0.2), .ambient = from_d(1)});
+    add_sphere(&s, m, 0, 0, -10, 2.0);
+    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), from_d(40)};
+    rt_scene_prepare(&s);
+    const int sizes[][2] = {{1, 1}, {1, 7}, {7, 1}, {2, 2}, {9, 9}, {17, 17}, {13, 10},
+                            {W, H}, {W - 1, H - 3}, {33, 65}};
+    const int grids[] = {2, 4, 8, 16};
+    for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
+        for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
+            int w = sizes[n][0], h = sizes[n][1], grid = grids[g];
+            rt_view v;
+            rt_view_init(&v, &s.camera, w, h);
+            const rt_params pf = {.depth = 2, .mode = RT_MODE_FULL};
+            const rt_params pa = {.depth = 2, .mode = RT_MODE_ADAPTIVE, .grid = grid,
+                                  .threshold = RT_DEFAULT_THRESHOLD};
+            rt_stats st = {0};
+            assert_true(rt_render_work_size(&pa, w) <= sizeof work);
+            for (int i = 0; i < w * h; i++)
+                adpx[i] = 0xFF000000;
+            rt_render(&s, &v, &pa, adpx, w, &st, work, traced);
+            int written = 0, ntraced = 0;
+            for (int i = 0; i < w * h; i++) {
+                written += adpx[i] >> 24 == 0;
+                ntraced += traced[i];
+            }
+            assert_int_equal(written, w * h);
+            /* the four frame corners and the grid's corners are traced */
+            assert_true(traced[0] && traced[w - 1] && traced[(h - 1) * w] && traced[h * w - 1]);
+            for (int y = 0; y < h; y += grid)
+                for (int x = 0; x < w; x += grid)
+                    assert_true(traced[y * w + x]);
+            /* each point is traced once, except sub-square points on the edge between two
+             * bands (both bands may need them) */
+            int ncols = w > 1 ? (w - 1 + grid - 1) / grid : 1;
+            int nrows = h > 1 ? (h - 1 + grid - 1) / grid : 1;
+            assert_true(st.rays_primary >= (uint32_t)ntraced);
+            assert_true(st.rays_primary <= (uint32_t)(ntraced + w * (nrows - 1)));
+            /* without the sphere the picture is flat: identical to full mode */
+            s.nobjects = 0;
+            rt_stats sf = {0};
+            rt_render(&s, &v, &pf, fullpx, w, &sf, NULL, NULL);
+            rt_render(&s, &v, &pa, adpx, w, &sf, work, NULL);
+            assert_memory_equal(adpx, fullpx, (size_t)(w * h) * sizeof *adpx);
+            s.nobjects = 1;
+            /* the squares and the splits add up */
+            if (w > 2 && h > 2 && (w - 1) % grid == 0 && (h - 1) % grid == 0)
+                assert_int_equal(st.squares[0], (uint32_t)(ncols * nrows));
+            for (int l = 0; l < RT_GRID_LEVELS; l++)
+                assert_true(st.split[l] <= st.squares[l]);
+        }
+    }
+}
+
+/* Adaptive recursion control: rays weighing less than min_contrib are not cast, and their
+ * share is all the picture loses. */
+static void test_min_contrib(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mm = add_material(&s, (rt_material){.diffuse = vd(0.1, 0.1, 0.1), .ambient = from_d(1),
+                                            .reflect = from_d(0.5)});
+    add_sphere(&s, mm, -1.2, 0, -8, 1.0);
+    add_sphere(&s, mm, 1.2, 0, -8, 1.0);
+    s.depth = 8;
+    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -8), vd(0, 1, 0), from_d(40)};
+    rt_scene_prepare(&s);
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    uint32_t count[5];
+    const double limits[] = {0, 0.01, 0.1, 0.3, 0.6};
+    for (size_t i = 0; i < sizeof limits / sizeof limits[0]; i++) {
+        rt_params p = {.depth = 8, .mode = RT_MODE_FULL, .min_contrib = from_d(limits[i])};
+        rt_stats st = {0};
+        rt_render(&s, &v, &p, adpx, W, &st, NULL, NULL);
+        count[i] = st.rays_reflect;
+        print_message("min_contrib %.2f: %lu reflected rays\n", limits[i],
+                      (unsigned long)st.rays_reflect);
+        if (i > 0)
+            assert_true(count[i] <= count[i - 1]);
+    }
+    assert_true(count[3] < count[0]); /* 0.3 > 0.25: the second bounce is cut */
+    assert_true(count[3] > 0);        /* 0.3 < 0.5: the first is not */
+    assert_int_equal(count[4], 0);    /* 0.6 > 0.5: not even the first bounce */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_criteria),
+        cmocka_unit_test(test_interpolate_gradient),
+        cmocka_unit_test(test_object_edge),
+        cmocka_unit_test(test_shadow_edge),
+        cmocka_unit_test(test_reflected_outline),
+        cmocka_unit_test(test_sizes),
+        cmocka_unit_test(test_min_contrib),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
