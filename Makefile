@@ -4,6 +4,7 @@
 #   make run        set up if needed, render the demo scene headless
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      render frames with both builds side by side and print ms per frame
+#   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
@@ -47,7 +48,7 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench clean distclean setup san
+.PHONY: all run test bench bench-subsample clean distclean setup san
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -136,6 +137,10 @@ test: setup
 bench: setup
 	@$(MAKE) --no-print-directory all
 	@tests/bench.sh
+
+bench-subsample: setup
+	@$(MAKE) --no-print-directory all
+	@tests/bench_subsample.sh
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(HOST_PROGS)

@@ -1,11 +1,6 @@
 /* render.c: whole frames: every pixel traced (full mode), or adaptively subsampled; pixel colours. */
 #include "rt.h"
 
-uint32_t rt_color_pixel(rt_color c)
-{
-    return (uint32_t)r_to_byte(c.x) << 16 | (uint32_t)r_to_byte(c.y) << 8 | r_to_byte(c.z);
-}
-
 static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, uint8_t *traced)
 {

@@ -211,7 +211,10 @@ void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                     rt_color c10, rt_color c01, rt_color c11);
 
 /* A colour as a 0x00RRGGBB pixel: each channel clamped to [0, 1] and rounded to 8 bits. */
-uint32_t rt_color_pixel(rt_color c);
+static inline uint32_t rt_color_pixel(rt_color c)
+{
+    return (uint32_t)r_to_byte(c.x) << 16 | (uint32_t)r_to_byte(c.y) << 8 | r_to_byte(c.z);
+}
 
 /* The diffuse colour of material m at the scene point p (its texture, if any); *cell gets
  * the id of the texture cell p lies in (checkerboard), 0 for textures without cells. */

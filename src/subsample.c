@@ -65,7 +65,7 @@ static rt_color ss_lerp(rt_color a, rt_color b, real t)
     return v3(r_lerp(a.x, b.x, t), r_lerp(a.y, b.y, t), r_lerp(a.z, b.z, t));
 }
 
-/* Bilinear fill with the weights wx[i] = i / w and wy[j] = j / h given. */
+/* Bilinear fill with the weights wx[i] = i / w and wy[j] = j / h given (only wx[1] is used). */
 static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows, const real *wx,
                     const real *wy, rt_color c00, rt_color c10, rt_color c01, rt_color c11)
 {
@@ -81,9 +81,15 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             l = ss_lerp(c00, c01, wy[j]);
             r = ss_lerp(c10, c11, wy[j]);
         }
+        /* Along the row by forward differences: w additions of (r - l) / w drift by at most
+         * w/2 steps of the number system, far below an 8-bit level. */
         uint32_t *row = dst + (long)j * stride;
-        for (int i = 0; i < cols; i++)
-            row[i] = rt_color_pixel(i == 0 ? l : i == w ? r : ss_lerp(l, r, wx[i]));
+        rt_color step = w > 0 ? v3_scale(v3_sub(r, l), wx[1]) : l, v = l;
+        row[0] = rt_color_pixel(l);
+        for (int i = 1; i < cols; i++) {
+            v = v3_add(v, step);
+            row[i] = rt_color_pixel(i == w ? r : v);
+        }
     }
 }
 
@@ -93,7 +99,7 @@ void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows,
     real wx[RT_GRID_MAX + 1], wy[RT_GRID_MAX + 1];
     if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
         return;
-    for (int i = 1; i < w; i++)
+    for (int i = 1; i <= w; i++)
         wx[i] = r_from_ratio(i, w);
     for (int j = 1; j < h; j++)
         wy[j] = r_from_ratio(j, h);
