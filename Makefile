@@ -128,7 +128,8 @@ run: setup
 	$(BUILD)/rt-fixed render --size 640x480 -o $(BUILD)/out/demo-fixed.png --stats
 	$(BUILD)/rt-float render --size 640x480 -o $(BUILD)/out/demo-float.png --stats
 	$(BUILD)/rt-cmp $(BUILD)/out/demo-fixed.png $(BUILD)/out/demo-float.png
-	@echo "run: the demo frame is in $(BUILD)/out/demo-fixed.png (fixed point) and $(BUILD)/out/demo-float.png (float)"
+	$(BUILD)/rt-fixed render --size 640x480 --show-samples -o $(BUILD)/out/demo-samples.png
+	@echo "run: the demo frame is in $(BUILD)/out/demo-fixed.png (fixed point) and $(BUILD)/out/demo-float.png (float); $(BUILD)/out/demo-samples.png shows the traced points"
 
 test: setup
 	@$(MAKE) --no-print-directory all san
