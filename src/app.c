@@ -192,7 +192,10 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
             long n;
             if (app_parse_decimal(v, APP_DECIMALS, APP_SCALE, &n) != 0)
                 return app_error(a, "expected a number in 0..1 with at most 4 decimals", v);
-            *(a[2] == 't' ? &o->threshold : &o->min_contrib) = n;
+            if (strcmp(a, "--threshold") == 0)
+                o->threshold = n;
+            else
+                o->min_contrib = n;
         } else if (strcmp(a, "--stats") == 0) {
             o->stats = 1;
             continue;
@@ -213,6 +216,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
 
 static int app_render(int argc, char **argv)
 {
+    /* threshold and min_contrib in 1/10000: RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB */
     app_opts o = {.width = 320, .height = 240, .depth = -1, .mode = RT_MODE_ADAPTIVE,
                   .grid = RT_DEFAULT_GRID, .threshold = 625, .min_contrib = 100};
     int rc = app_parse_render(argc, argv, &o);
