@@ -176,13 +176,16 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
     uint32_t *dst = c->pixels + (long)y0 * c->stride + x0;
     ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], k[0]->color, k[1]->color,
             k[2]->color, k[3]->color);
-    /* Points traced for a neighbour's decisions show their traced colour. */
-    for (int j = 0; j < rows; j++) {
-        const rt_sample *sm = &c->lat[(y0 - c->sy + j) * c->lstride + (x0 - c->sx)];
-        for (int i = 0; i < cols; i++)
-            if (sm[i].nhits)
-                dst[(long)j * c->stride + i] = rt_color_pixel(sm[i].color);
-    }
+    /* Points a neighbour traced for its own decisions show their traced colour. They can only
+     * lie on the edges this square shares with squares done before it: its top row and left
+     * column (nothing is ever traced inside a square that is not split). */
+    const rt_sample *sm = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
+    for (int i = 1; i < cols; i++)
+        if (sm[i].nhits)
+            dst[i] = rt_color_pixel(sm[i].color);
+    for (int j = 1; j < rows; j++)
+        if (sm[j * c->lstride].nhits)
+            dst[(long)j * c->stride] = rt_color_pixel(sm[j * c->lstride].color);
 }
 
 /* Traces the top-level corners of row y into row[0..ncols]. */

@@ -212,6 +212,15 @@ static void add_floor(rt_scene *s, int mat)
     o->axis = vd(0, 1, 0);
 }
 
+/* A matte sphere of radius r at (x, y, -10), seen head-on from the origin. */
+static void one_sphere_scene(rt_scene *s, double x, double y, double r)
+{
+    scene_base(s);
+    int m = add_material(s, (rt_material){.diffuse = vd(0.8, 0.3, 0.2), .ambient = from_d(1)});
+    add_sphere(s, m, x, y, -10, r);
+    s->camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), from_d(40)};
+}
+
 /* Renders the scene in full (every sample kept) and adaptive mode. For every pair of
  * neighbouring pixels whose full samples differ for `reason`, checks that the adaptive render
  * traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
@@ -278,10 +287,7 @@ static void test_object_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int m = add_material(&s, (rt_material){.diffuse = vd(0.8, 0.3, 0.2), .ambient = from_d(1)});
-    add_sphere(&s, m, 0.3, 0.2, -10, 2.5);
-    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), from_d(40)};
+    one_sphere_scene(&s, 0.3, 0.2, 2.5);
     check_edge(&s, RT_SPLIT_OBJECT, 100, "object edge");
 }
 
@@ -326,10 +332,7 @@ static void test_sizes(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int m = add_material(&s, (rt_material){.diffuse = vd(0.8, 0.3, 0.2), .ambient = from_d(1)});
-    add_sphere(&s, m, 0, 0, -10, 2.0);
-    s.camera = (rt_camera){vd(0, 0, 0), vd(0, 0, -10), vd(0, 1, 0), from_d(40)};
+    one_sphere_scene(&s, 0, 0, 2.0);
     rt_scene_prepare(&s);
     const int sizes[][2] = {{1, 1}, {1, 7}, {7, 1}, {2, 2}, {9, 9}, {17, 17}, {13, 10},
                             {W, H}, {W - 1, H - 3}, {33, 65}};
