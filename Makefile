@@ -34,9 +34,11 @@ SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-fram
 
 # The tracer core: the same sources in every variant.
 CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
-             src/texture.c src/demo.c
-APP_SRCS := src/app.c src/image.c platform/headless.c
-TESTS := test_numeric test_shapes test_noise test_subsample
+             src/texture.c src/scn.c
+# The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
+GEN := $(BUILD)/gen
+APP_SRCS := src/app.c src/scn_parse.c src/image.c platform/headless.c $(GEN)/scene_intro.c
+TESTS := test_numeric test_shapes test_noise test_subsample test_scene
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
 
 # On x86-64 the fixed core is compiled without access to floating-point registers: any float
@@ -45,7 +47,7 @@ ifeq ($(shell uname -m),x86_64)
 FIXED_CORE_GUARD := -mgeneral-regs-only
 endif
 
-HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp
+HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
 .PHONY: all run test bench bench-subsample clean distclean setup san
@@ -67,7 +69,7 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -105,12 +107,20 @@ $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
 $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
+# The scene compiler runs at build time, so it is built from the float objects.
+$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o $(CORE_OBJS_float)
+	$(CC) $(OPT) -o $@ $^ -lm
+
+$(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
+	@mkdir -p $(@D)
+	$(BUILD)/rt-scenec $< -o $@ --name scn_intro
+
 define san_progs
 $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
 
-$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ -lcmocka -lm
 endef

@@ -60,6 +60,12 @@ static inline real r_from_int(int32_t i)
     return fx_sat((int64_t)i * 65536);
 }
 
+/* A Q16.16 integer (65536 = 1.0) as a real: exact. */
+static inline real r_from_q16(int32_t v)
+{
+    return (real)v;
+}
+
 /* Nearest integer (half up). */
 static inline int32_t r_to_int(real a)
 {

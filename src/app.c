@@ -6,6 +6,11 @@
 #include "image.h"
 #include "platform.h"
 #include "rt.h"
+#include "scn.h"
+#include "scn_parse.h"
+
+/* The intro, scenes/intro.scene compiled into the program at build time (rt-scenec). */
+extern const scn_desc scn_intro;
 
 #if REAL_FIXED
 #define APP_REAL "fixed"
@@ -13,17 +18,19 @@
 #define APP_REAL "float"
 #endif
 
-#define APP_FPS 25
 #define APP_MAX_SIDE 4096
-#define APP_MAX_TIME_MS (3600 * 1000)
+#define APP_MAX_TIME_MS SCN_MAX_DURATION_MS
 
 static const char *app_name = "rt";
 
 typedef struct app_opts {
     const char *output;
     int width, height;
+    const char *scene; /* NULL: the built-in intro */
     int32_t time_ms;
+    long frame;
     int have_time, have_frame;
+    int effects_all;
     int depth; /* -1: the scene's */
     int stats;
     int mode, grid;
@@ -37,11 +44,13 @@ typedef struct app_opts {
 static void app_usage(FILE *f)
 {
     fprintf(f,
-            "usage: %s render [options]     render one frame of the demo scene to an image file\n"
+            "usage: %s render [options]     render one frame of a scene to an image file\n"
+            "  --scene FILE        scene file (docs/scene-format.md; default: the built-in intro,\n"
+            "                      scenes/intro.scene)\n"
             "  -o, --output FILE   output image, .png or .ppm (default frame.png)\n"
             "  --size WxH          image size, each side 1..%d (default 320x240)\n"
-            "  --time SECONDS      moment of the animation, e.g. 2.5 (default 0)\n"
-            "  --frame N           frame N at %d frames per second (instead of --time)\n"
+            "  --time SECONDS      moment of the scene's timeline, e.g. 2.5 (default 0)\n"
+            "  --frame N           frame N at the scene's frame rate (instead of --time)\n"
             "  --depth N           recursion limit 0..%d (default: the scene's)\n"
             "  --mode M            full (trace every pixel) or adaptive (default)\n"
             "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
@@ -49,11 +58,13 @@ static void app_usage(FILE *f)
             "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
             "  --min-contrib X     skip secondary rays weighing less than X in the pixel, 0..1\n"
             "                      (default 0.01; 0 = trace every ray)\n"
+            "  --effects E         auto: trace only the effects the frame needs (default);\n"
+            "                      all: every effect on, for comparison\n"
             "  --show-samples      paint every traced point white\n"
             "  --stats             print key=value statistics on standard output\n"
             "       %s --help\n"
             "Number system of this build: %s.\n",
-            app_name, APP_MAX_SIDE, APP_FPS, RT_MAX_DEPTH, RT_DEFAULT_GRID, app_name, APP_REAL);
+            app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, app_name, APP_REAL);
 }
 
 static int app_error(const char *option, const char *what, const char *value)
@@ -153,11 +164,21 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                           strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
                           strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0 ||
                           strcmp(a, "--mode") == 0 || strcmp(a, "--grid") == 0 ||
-                          strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0;
+                          strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0 ||
+                          strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0;
         if (takes_value && !v)
             return app_error(a, "needs a value", NULL);
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             o->output = v;
+        } else if (strcmp(a, "--scene") == 0) {
+            o->scene = v;
+        } else if (strcmp(a, "--effects") == 0) {
+            if (strcmp(v, "auto") == 0)
+                o->effects_all = 0;
+            else if (strcmp(v, "all") == 0)
+                o->effects_all = 1;
+            else
+                return app_error(a, "expected auto or all", v);
         } else if (strcmp(a, "--size") == 0) {
             if (app_parse_size(v, &o->width, &o->height) != 0)
                 return app_error(a, "expected WxH with W and H in 1..4096", v);
@@ -166,10 +187,8 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected seconds in 0..3600 with at most 3 decimals", v);
             o->have_time = 1;
         } else if (strcmp(a, "--frame") == 0) {
-            long n;
-            if (app_parse_int(v, NULL, 0, (long)APP_MAX_TIME_MS / 1000 * APP_FPS, &n) != 0)
-                return app_error(a, "expected a frame number in 0..90000", v);
-            o->time_ms = (int32_t)(n * 1000 / APP_FPS);
+            if (app_parse_int(v, NULL, 0, (long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS, &o->frame) != 0)
+                return app_error(a, "expected a frame number (0 or more)", v);
             o->have_frame = 1;
         } else if (strcmp(a, "--depth") == 0) {
             long n;
@@ -225,8 +244,37 @@ static int app_render(int argc, char **argv)
     if (!img_path_ok(o.output))
         return app_error("-o", "the output must end in .png or .ppm", o.output);
 
+    /* The scene: a file, or the intro compiled in. */
+    static scn_file file;
+    const scn_desc *desc = &scn_intro;
+    const char *scene_name = "intro (built in)";
+    if (o.scene) {
+        char err[640];
+        if (scn_load(o.scene, &file, err, sizeof err) != 0) {
+            fprintf(stderr, "%s: %s\n", app_name, err);
+            return 2;
+        }
+        desc = &file.desc;
+        scene_name = o.scene;
+    }
+    if (o.have_frame) {
+        long last = (long)desc->duration_ms * desc->fps / 1000;
+        if (o.frame > last) {
+            fprintf(stderr, "%s: --frame: %ld is past the last frame of %s (%ld at %ld fps)\n",
+                    app_name, o.frame, scene_name, last, (long)desc->fps);
+            return 2;
+        }
+        o.time_ms = (int32_t)(o.frame * 1000 / desc->fps);
+    } else if (o.time_ms > desc->duration_ms) {
+        fprintf(stderr, "%s: --time: %ld.%03ld s is past the end of %s (%ld.%03ld s)\n", app_name,
+                (long)o.time_ms / 1000, (long)o.time_ms % 1000, scene_name,
+                (long)desc->duration_ms / 1000, (long)desc->duration_ms % 1000);
+        return 2;
+    }
     static rt_scene scene;
-    rt_demo_scene(&scene, o.time_ms);
+    scn_eval(desc, o.time_ms, &scene);
+    if (o.effects_all)
+        rt_scene_force_effects(&scene);
     rt_params params = {
         .depth = o.depth >= 0 ? o.depth : scene.depth,
         .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
@@ -273,8 +321,16 @@ static int app_render(int argc, char **argv)
         return rc;
 
     if (o.stats) {
-        printf("real=%s\nsize=%dx%d\ntime_ms=%ld\ndepth=%d\n", APP_REAL, o.width, o.height,
-               (long)o.time_ms, params.depth);
+        printf("real=%s\nscene=%s\nsize=%dx%d\ntime_ms=%ld\ndepth=%d\n", APP_REAL, scene_name,
+               o.width, o.height, (long)o.time_ms, params.depth);
+        static const char *const fx_names[] = {"shadow", "specular", "reflect", "refract",
+                                               "texture", "noise"};
+        printf("effects=");
+        for (int b = 0, n = 0; b < 6; b++)
+            if (scene.effects & (1u << b))
+                printf("%s%s", n++ ? "," : "", fx_names[b]);
+        printf("%s\n", scene.effects ? "" : "none");
+        printf("reach_depth=%d\n", params.depth < scene.reach_depth ? params.depth : scene.reach_depth);
         printf("mode=%s\n", o.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
         if (o.mode == RT_MODE_ADAPTIVE)
             printf("grid=%d\nthreshold=%ld.%04ld\n", o.grid, o.threshold / APP_SCALE,

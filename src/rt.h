@@ -12,7 +12,7 @@
 
 #include "real.h"
 
-#define RT_MAX_OBJECTS 32
+#define RT_MAX_OBJECTS 32 /* at most 32: sets of objects are 32-bit masks */
 #define RT_MAX_LIGHTS 4
 #define RT_MAX_MATERIALS 16
 #define RT_MAX_DEPTH 8
@@ -81,6 +81,26 @@ typedef struct rt_camera {
     real fov; /* vertical field of view, degrees, in [10, 120] */
 } rt_camera;
 
+/* Effects a scene may need (bits); the tracer skips the code of every effect not in
+ * rt_scene.effects. Derived from the scene by rt_scene_prepare (effects on demand), or all
+ * forced on. Macros rather than an enum: RT_COMPILED_EFFECTS is tested by the preprocessor. */
+#define RT_FX_SHADOW 1u   /* shadow rays: some object can come between a light and a surface */
+#define RT_FX_SPECULAR 2u /* Phong highlights: some material has specular > 0 */
+#define RT_FX_REFLECT 4u  /* mirror rays: some material reflects (or transmits: total reflection) */
+#define RT_FX_REFRACT 8u  /* refracted rays: some material transmits */
+#define RT_FX_TEXTURE 16u /* some material is textured */
+#define RT_FX_NOISE 32u   /* some texture uses Perlin noise (marble, wood, noise) */
+#define RT_FX_ALL 63u
+
+/* Effects compiled into the tracer: a scene compiled into the program (scenec) defines this
+ * to the effects of its whole timeline, and the code of the others is not linked at all. */
+#ifndef RT_COMPILED_EFFECTS
+#define RT_COMPILED_EFFECTS RT_FX_ALL
+#endif
+#if (RT_COMPILED_EFFECTS) > RT_FX_ALL
+#error "RT_COMPILED_EFFECTS must be a set of enum rt_effect bits"
+#endif
+
 typedef struct rt_scene {
     rt_color background;
     rt_color ambient;
@@ -90,6 +110,10 @@ typedef struct rt_scene {
     rt_light lights[RT_MAX_LIGHTS];
     rt_material materials[RT_MAX_MATERIALS];
     rt_camera camera;
+    /* Derived by rt_scene_prepare (or rt_scene_force_effects): */
+    unsigned effects;                   /* RT_FX_* bits the frame needs */
+    int reach_depth;                    /* recursion depth the materials can reach */
+    uint32_t occluders[RT_MAX_LIGHTS];  /* per light: objects that can shadow something */
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
@@ -167,8 +191,19 @@ typedef struct rt_shape_ops {
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 
-/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv). */
+/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv) and
+ * derives the effects the scene needs: effects, reach_depth and occluders. */
 void rt_scene_prepare(rt_scene *s);
+
+/* After rt_scene_prepare: turns every effect on (every light tested against every object, full
+ * recursion), the generic path that effects on demand is measured against. */
+void rt_scene_force_effects(rt_scene *s);
+
+/* Is `e` (RT_FX_* bits) both compiled in and needed by the scene? */
+static inline int rt_scene_has(const rt_scene *s, unsigned e)
+{
+    return (s->effects & (RT_COMPILED_EFFECTS) & e) != 0;
+}
 
 /* Sets up the primary-ray frame for an image of width x height pixels. */
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
@@ -219,11 +254,5 @@ static inline uint32_t rt_color_pixel(rt_color c)
 /* The diffuse colour of material m at the scene point p (its texture, if any); *cell gets
  * the id of the texture cell p lies in (checkerboard), 0 for textures without cells. */
 rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell);
-
-/* The built-in demo scene at the given time: a camera orbit around a few objects that use
- * every effect. Prepared (rt_scene_prepare) on return. */
-void rt_demo_scene(rt_scene *s, int32_t time_ms);
-/* Duration of one orbit of the demo camera. */
-#define RT_DEMO_PERIOD_MS 24000
 
 #endif

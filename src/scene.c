@@ -1,5 +1,98 @@
-/* scene.c: derived scene data and the camera: look-at frame and primary rays. */
+/* scene.c: derived scene data, the effects a scene needs, and the camera: look-at frame and primary rays. */
 #include "rt.h"
+
+/* Signed distance of p from the plane o (positive on the side its normal points to). */
+static real scene_side(const rt_object *plane, vec3 p)
+{
+    return r_sub(v3_dot_d(p, plane->normal), plane->offset);
+}
+
+/* Can the plane `pl` come between light position `lp` and a point of another object? Only if
+ * some other object reaches the far side of the plane from the light: the segment from a
+ * surface point to the light crosses the plane only then. */
+static int scene_plane_occludes(const rt_scene *s, int pl, vec3 lp)
+{
+    const rt_object *p = &s->objects[pl];
+    real sl = scene_side(p, lp);
+    if (sl == 0)
+        return 1;
+    for (int j = 0; j < s->nobjects; j++) {
+        const rt_object *o = &s->objects[j];
+        if (j == pl)
+            continue;
+        real lo, hi;
+        if (o->kind == RT_SPHERE) {
+            real c = scene_side(p, o->center);
+            lo = r_sub(c, o->radius);
+            hi = r_add(c, o->radius);
+        } else {
+            unit cs = d3_dot(o->normal, p->normal);
+            if (cs < U(0.999999) && cs > U(-0.999999))
+                return 1; /* planes that are not parallel cross */
+            /* points x of o have x . n_o = offset_o, so x . n_p = +-offset_o */
+            lo = hi = r_sub(cs > 0 ? o->offset : r_neg(o->offset), p->offset);
+        }
+        if (sl > 0 ? lo < 0 : hi > 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Effects on demand: what the materials in use, the lights and the geometry call for. */
+static void scene_derive_effects(rt_scene *s)
+{
+    unsigned fx = 0;
+    int secondary = 0, self_loop = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        const rt_material *m = &s->materials[o->material];
+        if (m->specular > 0 && s->nlights > 0)
+            fx |= RT_FX_SPECULAR;
+        if (m->transmit > 0)
+            fx |= RT_FX_REFRACT | RT_FX_REFLECT; /* total internal reflection */
+        if (m->reflect > 0)
+            fx |= RT_FX_REFLECT;
+        if (m->tex.kind != RT_TEX_NONE)
+            fx |= RT_FX_TEXTURE;
+        if (m->tex.kind == RT_TEX_MARBLE || m->tex.kind == RT_TEX_WOOD ||
+            m->tex.kind == RT_TEX_NOISE)
+            fx |= RT_FX_NOISE;
+        if (m->reflect > 0 || m->transmit > 0) {
+            secondary++;
+            /* a ray refracted into a sphere meets the sphere again from inside */
+            if (m->transmit > 0 && o->kind == RT_SPHERE)
+                self_loop = 1;
+        }
+    }
+    /* A convex object's mirror ray never meets the object again, so one such object alone
+     * is a ray tree of depth 1; two can mirror each other without end. */
+    s->reach_depth = secondary == 0 ? 0 : (secondary == 1 && !self_loop ? 1 : RT_MAX_DEPTH);
+
+    for (int l = 0; l < RT_MAX_LIGHTS; l++) {
+        uint32_t occ = 0;
+        for (int i = 0; i < s->nobjects && l < s->nlights; i++) {
+            /* A sphere can shadow any other object, and a glass sphere its own inside; a plane
+             * only what lies beyond it. */
+            const rt_object *o = &s->objects[i];
+            if (o->kind == RT_SPHERE
+                    ? s->nobjects > 1 || s->materials[o->material].transmit > 0
+                    : scene_plane_occludes(s, i, s->lights[l].pos))
+                occ |= (uint32_t)1 << i;
+        }
+        s->occluders[l] = occ;
+        if (occ)
+            fx |= RT_FX_SHADOW;
+    }
+    s->effects = fx;
+}
+
+void rt_scene_force_effects(rt_scene *s)
+{
+    s->effects = RT_FX_ALL;
+    s->reach_depth = RT_MAX_DEPTH;
+    for (int l = 0; l < RT_MAX_LIGHTS; l++)
+        s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
+}
 
 void rt_scene_prepare(rt_scene *s)
 {
@@ -16,6 +109,7 @@ void rt_scene_prepare(rt_scene *s)
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
     }
+    scene_derive_effects(s);
 }
 
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)

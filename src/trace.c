@@ -24,13 +24,13 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return best;
 }
 
-/* Does anything block the segment from org along d of length dist? */
-static int trace_occluded(const rt_scene *s, vec3 org, dir3 d, real dist)
+/* Does any object of the set `occ` block the segment from org along d of length dist? */
+static int trace_occluded(const rt_scene *s, uint32_t occ, vec3 org, dir3 d, real dist)
 {
-    for (int i = 0; i < s->nobjects; i++) {
+    for (int i = 0; occ; i++, occ >>= 1) {
         const rt_object *o = &s->objects[i];
         real hit;
-        if (rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
+        if ((occ & 1u) && rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
             return 1;
     }
     return 0;
@@ -75,8 +75,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
-    uint8_t cell;
-    rt_color base = rt_texture_color(m, p, &cell);
+    uint8_t cell = 0;
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) ? rt_texture_color(m, p, &cell) : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
@@ -87,11 +87,20 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         unit ndl = d3_dot(n, l);
         uint8_t state = 0;
         if (ndl > 0) { /* the light is in front of the surface */
-            c->stats->rays_shadow++;
-            if (!trace_occluded(s, p_out, l, dist)) {
+            /* A convex surface never shadows its own lit side; seen from inside (glass) it
+             * can. Lights nothing can occlude cast no shadow ray at all. */
+            uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+            if (!inside)
+                occ &= ~((uint32_t)1 << id);
+            int blocked = 0;
+            if (occ) {
+                c->stats->rays_shadow++;
+                blocked = trace_occluded(s, occ, p_out, l, dist);
+            }
+            if (!blocked) {
                 state = 1;
                 col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
-                if (m->specular > 0) {
+                if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
                     /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
                     /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation */
                     unit vr = u_add(d3_dot(d, l), u_neg(u_muli(u_mul(ndl, dn), 2)));
@@ -114,9 +123,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
      * what it mirrors is below a pixel. */
-    if (depth > 0 && v3_within(p, R_SCENE_MAX)) {
+    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
         real kr = m->reflect;
-        if (m->transmit > 0) {
+        if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
             dir3 rd;
             real eta = inside ? m->ior : m->ior_inv;
             if (d3_refract(d, n, eta, &rd)) {
@@ -150,5 +159,6 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
         out->light_state[i] = 0;
     stats->rays_primary++;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), p->depth, R_ONE, 0);
+    int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
 }

@@ -11,12 +11,15 @@ rm -rf "$T" && mkdir -p "$T"
 passed=0
 failed=0
 
+# The frames of the tracer's own tests come from the demo scene.
+DEMO="--scene scenes/demo.scene"
+
 pass() { passed=$((passed + 1)); echo "ok   $*"; }
 fail() { failed=$((failed + 1)); echo "FAIL $*"; }
 
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise test_subsample; do
+  for t in test_numeric test_shapes test_noise test_subsample test_scene; do
     if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
       grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib)' "$T/$v-$t.log" | sed 's/^/       /'
@@ -27,7 +30,7 @@ for v in san-fixed san-float; do
   done
 done
 
-# ---- frames: fixed vs float on the demo scene --------------------------------------------------
+# ---- frames: fixed vs float on the demo scene (scenes/demo.scene) --------------------------------------------------
 # Full mode (every pixel traced, every ray cast): PSNR >= 40 dB and at most 0.5% of pixels with a
 # channel off by more than 8. Adaptive mode (the default): PSNR >= 38 dB.
 cmp_frames() { # label fixed.png float.png min-psnr max-over8-per-mille
@@ -46,8 +49,8 @@ cmp_frames() { # label fixed.png float.png min-psnr max-over8-per-mille
 for time in 0 6 12.5 18; do
   for mode in full adaptive; do
     f=$T/float-$mode-$time.png x=$T/fixed-$mode-$time.png
-    if ! $B/rt-float render --mode $mode --time "$time" -o "$f" 2>/dev/null ||
-       ! $B/rt-fixed render --mode $mode --time "$time" -o "$x" 2>/dev/null; then
+    if ! $B/rt-float render $DEMO --mode $mode --time "$time" -o "$f" 2>/dev/null ||
+       ! $B/rt-fixed render $DEMO --mode $mode --time "$time" -o "$x" 2>/dev/null; then
       fail "render demo at t=$time in $mode mode"
       continue
     fi
@@ -61,16 +64,16 @@ done
 # Adaptive mode with every criterion at its finest is full mode, but for interpolated squares
 # whose corners agree exactly.
 for real in fixed float; do
-  $B/rt-$real render --mode full --min-contrib 0 --time 9 -o "$T/$real-ref.png" 2>/dev/null
-  $B/rt-$real render --threshold 0 --min-contrib 0 --time 9 -o "$T/$real-thr0.png" 2>/dev/null
+  $B/rt-$real render $DEMO --mode full --min-contrib 0 --time 9 -o "$T/$real-ref.png" 2>/dev/null
+  $B/rt-$real render $DEMO --threshold 0 --min-contrib 0 --time 9 -o "$T/$real-thr0.png" 2>/dev/null
   cmp_frames "$real: adaptive with --threshold 0 vs full, t=9s" "$T/$real-thr0.png" "$T/$real-ref.png" 50 1
 done
 
 # ---- determinism: the same frame twice gives the same bytes ------------------------------------
 for real in fixed float; do
   for ext in png ppm; do
-    $B/rt-$real render --time 3.5 --size 200x150 -o "$T/det1-$real.$ext" 2>/dev/null
-    $B/rt-$real render --time 3.5 --size 200x150 -o "$T/det2-$real.$ext" 2>/dev/null
+    $B/rt-$real render $DEMO --time 3.5 --size 200x150 -o "$T/det1-$real.$ext" 2>/dev/null
+    $B/rt-$real render $DEMO --time 3.5 --size 200x150 -o "$T/det2-$real.$ext" 2>/dev/null
     if cmp -s "$T/det1-$real.$ext" "$T/det2-$real.$ext"; then
       pass "deterministic: rt-$real renders t=3.5 twice to identical .$ext bytes"
     else
@@ -78,8 +81,8 @@ for real in fixed float; do
     fi
   done
   for opts in "--mode full" "--grid 16 --threshold 0.2" "--grid 2 --size 97x61"; do
-    $B/rt-$real render --time 7.25 --size 150x100 $opts -o "$T/det3-$real.ppm" 2>/dev/null
-    $B/rt-$real render --time 7.25 --size 150x100 $opts -o "$T/det4-$real.ppm" 2>/dev/null
+    $B/rt-$real render $DEMO --time 7.25 --size 150x100 $opts -o "$T/det3-$real.ppm" 2>/dev/null
+    $B/rt-$real render $DEMO --time 7.25 --size 150x100 $opts -o "$T/det4-$real.ppm" 2>/dev/null
     if [ -s "$T/det3-$real.ppm" ] && cmp -s "$T/det3-$real.ppm" "$T/det4-$real.ppm"; then
       pass "deterministic: rt-$real $opts renders twice to identical bytes"
     else
@@ -88,13 +91,13 @@ for real in fixed float; do
   done
 done
 # --frame N is --time N/25
-$B/rt-fixed render --frame 50 --size 64x48 -o "$T/frame50.ppm" 2>/dev/null
-$B/rt-fixed render --time 2 --size 64x48 -o "$T/time2.ppm" 2>/dev/null
+$B/rt-fixed render $DEMO --frame 50 --size 64x48 -o "$T/frame50.ppm" 2>/dev/null
+$B/rt-fixed render $DEMO --time 2 --size 64x48 -o "$T/time2.ppm" 2>/dev/null
 if cmp -s "$T/frame50.ppm" "$T/time2.ppm"; then pass "--frame 50 equals --time 2"; else fail "--frame 50 differs from --time 2"; fi
 
 # ---- the whole tracer under the sanitizers, with numeric event counting ------------------------
 for real in fixed float; do
-  out=$($B/san-$real/rt render --time 7 --size 160x120 --stats -o "$T/san-$real.png" 2>"$T/san-$real.err")
+  out=$($B/san-$real/rt render $DEMO --time 7 --size 160x120 --stats -o "$T/san-$real.png" 2>"$T/san-$real.err")
   rc=$?
   ov=$(sed -n 's/^fx_overflow=//p' <<<"$out")
   dm=$(sed -n 's/^fx_domain=//p' <<<"$out")
@@ -108,7 +111,7 @@ for real in fixed float; do
 done
 
 # ---- --stats --------------------------------------------------------------------------------------
-stats=$($B/rt-fixed render --mode full --size 80x60 --stats -o "$T/stats.png" 2>/dev/null)
+stats=$($B/rt-fixed render $DEMO --mode full --size 80x60 --stats -o "$T/stats.png" 2>/dev/null)
 missing=""
 for key in ms pixels samples_traced rays_primary rays_shadow rays_reflect rays_refract; do
   grep -q "^$key=[0-9.]*$" <<<"$stats" || missing="$missing $key"
@@ -119,7 +122,7 @@ if [ -z "$missing" ] && grep -q '^pixels=4800$' <<<"$stats" && grep -q '^samples
 else
   fail "--stats (full mode) output lacks:$missing"
 fi
-stats=$($B/rt-fixed render --size 320x240 --time 3 --stats -o "$T/stats-ad.ppm" 2>/dev/null)
+stats=$($B/rt-fixed render $DEMO --size 320x240 --time 3 --stats -o "$T/stats-ad.ppm" 2>/dev/null)
 missing=""
 for key in samples_traced rays_primary rays_shadow rays_reflect rays_refract squares_8 split_8 \
            squares_4 split_4 squares_2 split_2 split_object split_light split_secondary \
@@ -135,7 +138,7 @@ else
   fail "--stats (adaptive mode) output lacks:$missing (samples=$samples squares_8=$sq8)"
 fi
 # --show-samples paints the traced points white: as many changed pixels as points traced, at most
-$B/rt-fixed render --size 320x240 --time 3 --show-samples -o "$T/dots.ppm" 2>/dev/null
+$B/rt-fixed render $DEMO --size 320x240 --time 3 --show-samples -o "$T/dots.ppm" 2>/dev/null
 line=$($B/rt-cmp "$T/dots.ppm" "$T/stats-ad.ppm")
 changed=$(sed -n 's/.*differing=\([0-9]*\).*/\1/p' <<<"$line")
 if [ -n "$changed" ] && [ "$changed" -le "$samples" ] && [ $((changed * 10)) -ge $((samples * 9)) ]; then
@@ -143,7 +146,7 @@ if [ -n "$changed" ] && [ "$changed" -le "$samples" ] && [ $((changed * 10)) -ge
 else
   fail "--show-samples changed '$changed' pixels for $samples traced points"
 fi
-stats=$($B/rt-float render --size 80x60 --depth 0 --stats -o "$T/stats0.png" 2>/dev/null)
+stats=$($B/rt-float render $DEMO --size 80x60 --depth 0 --stats -o "$T/stats0.png" 2>/dev/null)
 if grep -q '^rays_reflect=0$' <<<"$stats" && grep -q '^rays_refract=0$' <<<"$stats" && grep -q '^depth=0$' <<<"$stats"; then
   pass "--depth 0 casts no reflected or refracted ray"
 else
@@ -173,32 +176,32 @@ expect_error() { # expected-status message-pattern command...
   fi
 }
 R=$B/rt-fixed
-expect_error 2 "unknown option" $R render --bogus
+expect_error 2 "unknown option" $R render $DEMO --bogus
 expect_error 2 "unknown command" $R draw
-expect_error 2 "expected WxH" $R render --size 0x10 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render --size 640 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render --size 5000x100 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render --size -3x4 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render --time -1 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render --time 1.2345 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render --time abc -o "$T/x.png"
-expect_error 2 "expected a frame number" $R render --frame 1e3 -o "$T/x.png"
-expect_error 2 "expected a recursion limit" $R render --depth 9 -o "$T/x.png"
-expect_error 2 "either --time or --frame" $R render --time 1 --frame 2 -o "$T/x.png"
-expect_error 2 "expected full or adaptive" $R render --mode fast -o "$T/x.png"
-expect_error 2 "expected a square size" $R render --grid 3 -o "$T/x.png"
-expect_error 2 "expected a square size" $R render --grid 32 -o "$T/x.png"
-expect_error 2 "expected a square size" $R render --grid 1 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render --threshold 1.5 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render --threshold -0.1 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render --min-contrib 0.00001 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render --min-contrib abc -o "$T/x.png"
-expect_error 2 "needs a value" $R render --grid
-expect_error 2 "needs a value" $R render -o
-expect_error 2 ".png or .ppm" $R render -o "$T/x.jpg"
-expect_error 1 "cannot write" $R render --size 8x8 -o "$T/no/such/dir/x.png"
+expect_error 2 "expected WxH" $R render $DEMO --size 0x10 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render $DEMO --size 640 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render $DEMO --size 5000x100 -o "$T/x.png"
+expect_error 2 "expected WxH" $R render $DEMO --size -3x4 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render $DEMO --time -1 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render $DEMO --time 1.2345 -o "$T/x.png"
+expect_error 2 "expected seconds" $R render $DEMO --time abc -o "$T/x.png"
+expect_error 2 "expected a frame number" $R render $DEMO --frame 1e3 -o "$T/x.png"
+expect_error 2 "expected a recursion limit" $R render $DEMO --depth 9 -o "$T/x.png"
+expect_error 2 "either --time or --frame" $R render $DEMO --time 1 --frame 2 -o "$T/x.png"
+expect_error 2 "expected full or adaptive" $R render $DEMO --mode fast -o "$T/x.png"
+expect_error 2 "expected a square size" $R render $DEMO --grid 3 -o "$T/x.png"
+expect_error 2 "expected a square size" $R render $DEMO --grid 32 -o "$T/x.png"
+expect_error 2 "expected a square size" $R render $DEMO --grid 1 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render $DEMO --threshold 1.5 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render $DEMO --threshold -0.1 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render $DEMO --min-contrib 0.00001 -o "$T/x.png"
+expect_error 2 "expected a number in 0..1" $R render $DEMO --min-contrib abc -o "$T/x.png"
+expect_error 2 "needs a value" $R render $DEMO --grid
+expect_error 2 "needs a value" $R render $DEMO -o
+expect_error 2 ".png or .ppm" $R render $DEMO -o "$T/x.jpg"
+expect_error 1 "cannot write" $R render $DEMO --size 8x8 -o "$T/no/such/dir/x.png"
 mkdir -p "$T/adir.png"
-expect_error 1 "cannot write" $R render --size 8x8 -o "$T/adir.png"
+expect_error 1 "cannot write" $R render $DEMO --size 8x8 -o "$T/adir.png"
 if ls "$T"/adir.png.tmp-* >/dev/null 2>&1; then fail "a temporary file was left behind"; else pass "no temporary file left behind after a failed write"; fi
 printf 'P6\n2 2\n255\nabc' >"$T/short.ppm"
 expect_error 2 "truncated" $B/rt-cmp "$T/short.ppm" "$T/det1-fixed.ppm"
@@ -206,6 +209,48 @@ expect_error 2 "cannot open" $B/rt-cmp "$T/missing.png" "$T/det1-fixed.ppm"
 echo "not an image" >"$T/text.png"
 expect_error 2 "bad PNG\|not a PNG" $B/rt-cmp "$T/text.png" "$T/det1-fixed.ppm"
 expect_error 2 "sizes differ" $B/rt-cmp "$T/stats.png" "$T/det1-fixed.png"
+
+# ---- bad scene files: the table in tests/bad_scenes.txt --------------------------------------
+# Each case: exit 2, one line "FILE:LINE:COL: words", and the same message from both builds.
+BAD=$T/bad
+mkdir -p "$BAD"
+awk -v dir="$BAD" '
+  /^===/ { n++; f = sprintf("%s/case%02d.scene", dir, n); sub(/^=== /, ""); print > (dir "/case" sprintf("%02d", n) ".want"); printf "" > f; next }
+  n > 0 { print >> f }
+' tests/bad_scenes.txt
+for want in "$BAD"/case*.want; do
+  scene=${want%.want}.scene
+  expected="$scene:$(cat "$want")"
+  errs=""
+  for real in fixed float; do
+    err=$($B/rt-$real render --scene "$scene" --size 8x8 -o "$T/bad.ppm" 2>&1 >/dev/null)
+    rc=$?
+    if [ $rc -ne 2 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || [[ "$err" != *"$expected"* ]]; then
+      errs="$errs rt-$real: exit $rc: $err;"
+    fi
+    eval "msg_$real=\${err#rt-$real: }"
+  done
+  if [ -z "$errs" ] && [ "$msg_fixed" = "$msg_float" ]; then
+    pass "bad scene: ${err#*: }"
+  else
+    fail "bad scene $(basename "$scene"): want '$expected':$errs"
+  fi
+done
+# more than the limits of items
+{ echo "camera eye 0 1 5 at 0 0 0"; echo "material m"
+  for i in $(seq 1 33); do echo "sphere s$i material m center $i 0 0 radius 0.5"; done; } >"$BAD/objects.scene"
+expect_error 2 "objects.scene:35:1: more than 32 objects" $R render --scene "$BAD/objects.scene"
+{ for i in $(seq 1 17); do echo "material m$i"; done; } >"$BAD/materials.scene"
+expect_error 2 "materials.scene:17:1: more than 16 materials" $R render --scene "$BAD/materials.scene"
+: >"$BAD/empty.scene"
+expect_error 2 "empty.scene:1:1: the scene has no camera" $R render --scene "$BAD/empty.scene"
+expect_error 2 "no/such.scene: cannot open" $R render --scene "$T/no/such.scene"
+expect_error 2 "cannot read" $R render --scene "$T"
+head -c 1100000 /dev/zero >"$BAD/huge.scene"
+expect_error 2 "larger than 1048576 bytes" $R render --scene "$BAD/huge.scene"
+expect_error 2 "past the end of scenes/demo.scene" $R render $DEMO --time 30 -o "$T/x.png"
+expect_error 2 "past the last frame of scenes/demo.scene (600 at 25 fps)" $R render $DEMO --frame 601 -o "$T/x.png"
+expect_error 2 "expected auto or all" $R render --effects some -o "$T/x.png"
 
 echo
 echo "$passed passed, $failed failed"

@@ -1,0 +1,866 @@
+/* scn_parse.c: the scene-file parser (integers only, so both builds read a file identically) and the C writer of scenec. */
+#include "scn_parse.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "noise.h"
+
+/* Where texture coordinates may reach before Q16.16 runs out: |point| x scale must stay below
+ * this (the wood texture takes a hypotenuse of two such coordinates: 20000 * sqrt 2 < 32767). */
+#define PS_TEXTURE_REACH 20000
+/* How far from the origin a plane's visible points can lie: the camera inside the scene cube
+ * plus the longest ray (R_SCENE_MAX + R_T_MAX). */
+#define PS_PLANE_REACH (4096 + 16384)
+
+typedef struct ps_tok {
+    const char *s;
+    int len;
+} ps_tok;
+
+typedef struct ps_state {
+    const char *path;
+    char *err;
+    size_t errlen;
+    scn_file *f;
+    int line;       /* current line, 1-based */
+    const char *ls; /* start of the current line */
+    const char *p;  /* cursor in the current line */
+    const char *le; /* end of its content (before a comment) */
+    int have_camera, have_duration;
+    int camera_line;
+    int object_line[RT_MAX_OBJECTS], light_line[RT_MAX_LIGHTS], material_line[RT_MAX_MATERIALS];
+    int track_line[SCN_MAX_TRACKS], track_col[SCN_MAX_TRACKS]; /* of the latest key */
+} ps_state;
+
+static int ps_fail_at(ps_state *ps, int line, int col, const char *fmt, ...)
+{
+    int n = snprintf(ps->err, ps->errlen, "%s:%d:%d: ", ps->path, line, col);
+    if (n < 0 || (size_t)n >= ps->errlen)
+        return -1;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(ps->err + n, ps->errlen - (size_t)n, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* An error at a point of the current line. */
+#define PS_FAIL(ps, at, ...) ps_fail_at((ps), (ps)->line, (int)((at) - (ps)->ls) + 1, __VA_ARGS__)
+
+/* The next whitespace-separated token of the line; 0 when the line has no more. */
+static int ps_next(ps_state *ps, ps_tok *t)
+{
+    while (ps->p < ps->le && (*ps->p == ' ' || *ps->p == '\t'))
+        ps->p++;
+    if (ps->p >= ps->le)
+        return 0;
+    t->s = ps->p;
+    while (ps->p < ps->le && *ps->p != ' ' && *ps->p != '\t')
+        ps->p++;
+    t->len = (int)(ps->p - t->s);
+    return 1;
+}
+
+static int ps_is(ps_tok t, const char *word)
+{
+    return (size_t)t.len == strlen(word) && memcmp(t.s, word, (size_t)t.len) == 0;
+}
+
+void scn_format_q16(int32_t v, char *buf)
+{
+    int64_t a = v < 0 ? -(int64_t)v : v;
+    int64_t whole = a / SCN_ONE;
+    /* six decimals, rounded, then trailing zeros dropped */
+    int64_t frac = ((a % SCN_ONE) * 1000000 + SCN_ONE / 2) / SCN_ONE;
+    if (frac >= 1000000) {
+        whole++;
+        frac -= 1000000;
+    }
+    int n = sprintf(buf, "%s%lld", v < 0 ? "-" : "", (long long)whole);
+    if (frac) {
+        n += sprintf(buf + n, ".%06lld", (long long)frac);
+        while (buf[n - 1] == '0')
+            buf[--n] = 0;
+    }
+}
+
+/* A decimal number as Q16.16, rounded to nearest; magnitudes of 32768 and more saturate
+ * (and then fail every range check). */
+static int ps_number(ps_state *ps, ps_tok t, const char *what, int32_t *out)
+{
+    const char *s = t.s, *e = t.s + t.len;
+    int neg = 0;
+    if (s < e && *s == '-') {
+        neg = 1;
+        s++;
+    }
+    int64_t whole = 0, frac = 0, pow10 = 1;
+    int digits = 0;
+    while (s < e && *s >= '0' && *s <= '9') {
+        if (whole < 100000)
+            whole = whole * 10 + (*s - '0');
+        s++;
+        digits++;
+    }
+    if (s < e && *s == '.') {
+        s++;
+        int fd = 0;
+        while (s < e && *s >= '0' && *s <= '9') {
+            if (fd < 9) {
+                frac = frac * 10 + (*s - '0');
+                pow10 *= 10;
+            }
+            fd++;
+            s++;
+        }
+        if (fd == 0)
+            digits = 0;
+    }
+    if (digits == 0 || s != e)
+        return PS_FAIL(ps, t.s, "%s: '%.*s' is not a number", what, t.len, t.s);
+    int64_t q = whole * SCN_ONE + (frac * 2 * SCN_ONE + pow10) / (2 * pow10);
+    if (q > INT32_MAX)
+        q = INT32_MAX;
+    *out = (int32_t)(neg ? -q : q);
+    return 0;
+}
+
+/* A whole number in [lo, hi]. */
+static int ps_int(ps_state *ps, ps_tok t, const char *what, long lo, long hi, int32_t *out)
+{
+    long v = 0;
+    for (int i = 0; i < t.len; i++) {
+        if (t.s[i] < '0' || t.s[i] > '9')
+            return PS_FAIL(ps, t.s, "%s: '%.*s' is not a whole number", what, t.len, t.s);
+        if (v <= hi)
+            v = v * 10 + (t.s[i] - '0');
+    }
+    if (t.len == 0 || v < lo || v > hi)
+        return PS_FAIL(ps, t.s, "%s: %.*s is out of range (%ld .. %ld)", what, t.len, t.s, lo, hi);
+    *out = (int32_t)v;
+    return 0;
+}
+
+/* Seconds with at most three decimals, in 0 .. SCN_MAX_DURATION_MS, as milliseconds. */
+static int ps_time(ps_state *ps, ps_tok t, const char *what, int32_t *ms)
+{
+    const char *s = t.s, *e = t.s + t.len;
+    long whole = 0, frac = 0;
+    int digits = 0, fd = 0;
+    while (s < e && *s >= '0' && *s <= '9') {
+        if (whole <= SCN_MAX_DURATION_MS / 1000)
+            whole = whole * 10 + (*s - '0');
+        s++;
+        digits++;
+    }
+    if (s < e && *s == '.') {
+        s++;
+        while (s < e && *s >= '0' && *s <= '9') {
+            if (fd < 3)
+                frac = frac * 10 + (*s - '0');
+            fd++;
+            s++;
+        }
+        if (fd == 0)
+            digits = 0;
+    }
+    if (digits == 0 || s != e)
+        return PS_FAIL(ps, t.s, "%s: '%.*s' is not a time in seconds", what, t.len, t.s);
+    if (fd > 3)
+        return PS_FAIL(ps, t.s, "%s: '%.*s' has more than 3 decimals (times are in whole milliseconds)",
+                       what, t.len, t.s);
+    for (; fd < 3; fd++)
+        frac *= 10;
+    long v = whole * 1000 + frac;
+    if (v > SCN_MAX_DURATION_MS)
+        return PS_FAIL(ps, t.s, "%s: %.*s s is out of range (0 .. %d s)", what, t.len, t.s,
+                       SCN_MAX_DURATION_MS / 1000);
+    *ms = (int32_t)v;
+    return 0;
+}
+
+/* The `arity` numbers of parameter `param` after the property token `prop`, range-checked. */
+static int ps_values(ps_state *ps, ps_tok prop, int param, int32_t out[3])
+{
+    const scn_param_info *pi = &scn_params[param];
+    for (int c = 0; c < pi->arity; c++) {
+        ps_tok t;
+        if (!ps_next(ps, &t))
+            return PS_FAIL(ps, prop.s, "'%.*s' needs %d number%s, found %d", prop.len, prop.s,
+                           pi->arity, pi->arity > 1 ? "s" : "", c);
+        if (ps_number(ps, t, pi->name, &out[c]) != 0)
+            return -1;
+        if (out[c] < pi->lo || out[c] > pi->hi) {
+            char lo[16], hi[16];
+            scn_format_q16(pi->lo, lo);
+            scn_format_q16(pi->hi, hi);
+            return PS_FAIL(ps, t.s, "%s: %.*s is out of range (%s .. %s)", pi->name, t.len, t.s,
+                           lo, hi);
+        }
+    }
+    if ((param == SCN_P_UP || param == SCN_P_NORMAL) && !out[0] && !out[1] && !out[2])
+        return PS_FAIL(ps, prop.s, "'%s' must not be the zero vector", pi->name);
+    return 0;
+}
+
+/* After the last property of a statement: nothing may follow. */
+static int ps_end(ps_state *ps)
+{
+    ps_tok t;
+    if (ps_next(ps, &t))
+        return PS_FAIL(ps, t.s, "unexpected '%.*s' at the end of the line", t.len, t.s);
+    return 0;
+}
+
+/* A property name that is not one of `expected`: say what went wrong. */
+static int ps_bad_property(ps_state *ps, ps_tok t, const char *stmt, ps_tok prev, int prev_arity,
+                           const char *expected)
+{
+    if ((t.s[0] >= '0' && t.s[0] <= '9') || t.s[0] == '-' || t.s[0] == '.') {
+        if (prev.len)
+            return PS_FAIL(ps, t.s, "extra value '%.*s' after '%.*s' (it takes %d)", t.len, t.s,
+                           prev.len, prev.s, prev_arity);
+        return PS_FAIL(ps, t.s, "unexpected value '%.*s' (expected a property: %s)", t.len, t.s,
+                       expected);
+    }
+    return PS_FAIL(ps, t.s, "unknown property '%.*s' of %s (expected: %s)", t.len, t.s, stmt,
+                   expected);
+}
+
+/* Marks property bit `bit` as given; a second time is an error. */
+static int ps_once(ps_state *ps, ps_tok t, unsigned *seen, unsigned bit)
+{
+    if (*seen & bit)
+        return PS_FAIL(ps, t.s, "'%.*s' is given twice", t.len, t.s);
+    *seen |= bit;
+    return 0;
+}
+
+/* Finds a name among the scene's items: sets *owner and *item, or returns -1. */
+static int ps_lookup(const ps_state *ps, ps_tok t, int *owner, int *item)
+{
+    const scn_file *f = ps->f;
+    for (int i = 0; i < f->desc.nobjects; i++)
+        if (ps_is(t, f->object_names[i])) {
+            *owner = f->desc.objects[i].kind == RT_SPHERE ? SCN_OWN_SPHERE : SCN_OWN_PLANE;
+            *item = i;
+            return 0;
+        }
+    for (int i = 0; i < f->desc.nlights; i++)
+        if (ps_is(t, f->light_names[i])) {
+            *owner = SCN_OWN_LIGHT;
+            *item = i;
+            return 0;
+        }
+    for (int i = 0; i < f->desc.nmaterials; i++)
+        if (ps_is(t, f->material_names[i])) {
+            *owner = SCN_OWN_MATERIAL;
+            *item = i;
+            return 0;
+        }
+    return -1;
+}
+
+static int ps_def_line(const ps_state *ps, int owner, int item)
+{
+    if (owner == SCN_OWN_LIGHT)
+        return ps->light_line[item];
+    if (owner == SCN_OWN_MATERIAL)
+        return ps->material_line[item];
+    return ps->object_line[item];
+}
+
+/* A new item's name: well-formed, not reserved, not taken. */
+static int ps_new_name(ps_state *ps, ps_tok kw, ps_tok *t, char *dst)
+{
+    if (!ps_next(ps, t))
+        return PS_FAIL(ps, kw.s, "'%.*s' needs a name", kw.len, kw.s);
+    int ok = t->len <= SCN_MAX_NAME &&
+             ((t->s[0] >= 'a' && t->s[0] <= 'z') || (t->s[0] >= 'A' && t->s[0] <= 'Z') ||
+              t->s[0] == '_');
+    for (int i = 1; ok && i < t->len; i++) {
+        char c = t->s[i];
+        ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+             c == '_' || c == '-';
+    }
+    if (!ok)
+        return PS_FAIL(ps, t->s, "'%.*s' is not a valid name (a letter or _, then letters, digits, _ "
+                       "or -, at most %d characters)", t->len, t->s, SCN_MAX_NAME);
+    if (ps_is(*t, "camera") || ps_is(*t, "scene"))
+        return PS_FAIL(ps, t->s, "'%.*s' is reserved and cannot name an item", t->len, t->s);
+    int owner, item;
+    if (ps_lookup(ps, *t, &owner, &item) == 0)
+        return PS_FAIL(ps, t->s, "duplicate name '%.*s' (first defined at line %d)", t->len, t->s,
+                       ps_def_line(ps, owner, item));
+    memcpy(dst, t->s, (size_t)t->len);
+    dst[t->len] = 0;
+    return 0;
+}
+
+static int ps_camera(ps_state *ps, ps_tok kw)
+{
+    scn_desc *d = &ps->f->desc;
+    if (ps->have_camera)
+        return PS_FAIL(ps, kw.s, "a second camera (the first is at line %d)", ps->camera_line);
+    ps->have_camera = 1;
+    ps->camera_line = ps->line;
+    static const char expected[] = "eye, at, up, fov";
+    unsigned seen = 0;
+    ps_tok t, prev = {0};
+    int prev_arity = 0;
+    while (ps_next(ps, &t)) {
+        int param = ps_is(t, "eye") ? SCN_P_EYE : ps_is(t, "at") ? SCN_P_AT : ps_is(t, "up") ? SCN_P_UP
+                    : ps_is(t, "fov") ? SCN_P_FOV : -1;
+        if (param < 0)
+            return ps_bad_property(ps, t, "the camera", prev, prev_arity, expected);
+        if (ps_once(ps, t, &seen, 1u << param) != 0)
+            return -1;
+        int32_t *dst = param == SCN_P_EYE ? d->eye : param == SCN_P_AT ? d->at
+                       : param == SCN_P_UP ? d->up : &d->fov;
+        if (ps_values(ps, t, param, dst) != 0)
+            return -1;
+        prev = t;
+        prev_arity = scn_params[param].arity;
+    }
+    if (!(seen & (1u << SCN_P_EYE)) || !(seen & (1u << SCN_P_AT)))
+        return PS_FAIL(ps, kw.s, "the camera needs both 'eye' and 'at'");
+    if (!memcmp(d->eye, d->at, sizeof d->eye))
+        return PS_FAIL(ps, kw.s, "the camera's 'eye' and 'at' are the same point");
+    return 0;
+}
+
+static int ps_light(ps_state *ps, ps_tok kw)
+{
+    scn_desc *d = &ps->f->desc;
+    if (d->nlights >= RT_MAX_LIGHTS)
+        return PS_FAIL(ps, kw.s, "more than %d lights", RT_MAX_LIGHTS);
+    ps_tok name;
+    if (ps_new_name(ps, kw, &name, ps->f->light_names[d->nlights]) != 0)
+        return -1;
+    scn_light *l = &d->lights[d->nlights];
+    static const char expected[] = "pos, color";
+    unsigned seen = 0;
+    ps_tok t, prev = {0};
+    int prev_arity = 0;
+    while (ps_next(ps, &t)) {
+        int param = ps_is(t, "pos") ? SCN_P_LIGHT_POS : ps_is(t, "color") ? SCN_P_LIGHT_COLOR : -1;
+        if (param < 0)
+            return ps_bad_property(ps, t, "a light", prev, prev_arity, expected);
+        if (ps_once(ps, t, &seen, 1u << param) != 0 ||
+            ps_values(ps, t, param, param == SCN_P_LIGHT_POS ? l->pos : l->color) != 0)
+            return -1;
+        prev = t;
+        prev_arity = 3;
+    }
+    if (!(seen & (1u << SCN_P_LIGHT_POS)))
+        return PS_FAIL(ps, name.s, "light '%.*s' has no 'pos'", name.len, name.s);
+    if (!(seen & (1u << SCN_P_LIGHT_COLOR)))
+        return PS_FAIL(ps, name.s, "light '%.*s' has no 'color'", name.len, name.s);
+    ps->light_line[d->nlights++] = ps->line;
+    return 0;
+}
+
+static const char *const ps_textures[RT_TEX_COUNT] = {"none", "checker", "marble", "wood", "noise"};
+static const char *const ps_palettes[RT_PAL_COUNT] = {"marble", "wood", "lava", "sky"};
+
+static int ps_word(ps_tok t, const char *const *words, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (ps_is(t, words[i]))
+            return i;
+    return -1;
+}
+
+static int ps_material(ps_state *ps, ps_tok kw)
+{
+    scn_desc *d = &ps->f->desc;
+    if (d->nmaterials >= RT_MAX_MATERIALS)
+        return PS_FAIL(ps, kw.s, "more than %d materials", RT_MAX_MATERIALS);
+    ps_tok name;
+    if (ps_new_name(ps, kw, &name, ps->f->material_names[d->nmaterials]) != 0)
+        return -1;
+    scn_material *m = &d->materials[d->nmaterials];
+    /* Defaults (docs/scene-format.md): a light grey matte surface. */
+    *m = (scn_material){.diffuse = {SCN_ONE * 4 / 5, SCN_ONE * 4 / 5, SCN_ONE * 4 / 5},
+                        .ambient = SCN_ONE, .shininess = 20, .ior = SCN_ONE, .scale = SCN_ONE,
+                        .turbulence = SCN_ONE, .octaves = 4, .palette = 0xFF};
+    static const char expected[] = "diffuse, color2, ambient, specular, shininess, reflect, "
+                                   "transmit, ior, texture, palette, octaves, scale, turbulence";
+    unsigned seen = 0;
+    ps_tok t, prev = {0};
+    int prev_arity = 0;
+    while (ps_next(ps, &t)) {
+        static const struct { const char *name; int param; } props[] = {
+            {"diffuse", SCN_P_DIFFUSE}, {"color2", SCN_P_COLOR2}, {"ambient", SCN_P_MAT_AMBIENT},
+            {"specular", SCN_P_SPECULAR}, {"reflect", SCN_P_REFLECT}, {"transmit", SCN_P_TRANSMIT},
+            {"ior", SCN_P_IOR}, {"scale", SCN_P_SCALE}, {"turbulence", SCN_P_TURBULENCE},
+            {"shininess", SCN_P_COUNT}, {"texture", SCN_P_COUNT + 1}, {"palette", SCN_P_COUNT + 2},
+            {"octaves", SCN_P_COUNT + 3}};
+        int k = -1;
+        for (int i = 0; i < (int)(sizeof props / sizeof props[0]); i++)
+            if (ps_is(t, props[i].name))
+                k = i;
+        if (k < 0)
+            return ps_bad_property(ps, t, "a material", prev, prev_arity, expected);
+        if (ps_once(ps, t, &seen, 1u << k) != 0)
+            return -1;
+        int param = props[k].param;
+        prev = t;
+        prev_arity = 1;
+        ps_tok v;
+        if (param < SCN_P_COUNT) {
+            int32_t *dst = param == SCN_P_DIFFUSE ? m->diffuse : param == SCN_P_COLOR2 ? m->color2
+                           : param == SCN_P_MAT_AMBIENT ? &m->ambient : param == SCN_P_SPECULAR ? &m->specular
+                           : param == SCN_P_REFLECT ? &m->reflect : param == SCN_P_TRANSMIT ? &m->transmit
+                           : param == SCN_P_IOR ? &m->ior : param == SCN_P_SCALE ? &m->scale
+                           : &m->turbulence;
+            if (ps_values(ps, t, param, dst) != 0)
+                return -1;
+            prev_arity = scn_params[param].arity;
+            continue;
+        }
+        if (!ps_next(ps, &v))
+            return PS_FAIL(ps, t.s, "'%.*s' needs a value", t.len, t.s);
+        int32_t n;
+        if (param == SCN_P_COUNT) {
+            if (ps_int(ps, v, "shininess", 1, 1000, &n) != 0)
+                return -1;
+            m->shininess = (uint16_t)n;
+        } else if (param == SCN_P_COUNT + 1) {
+            if ((n = ps_word(v, ps_textures, RT_TEX_COUNT)) < 0)
+                return PS_FAIL(ps, v.s, "unknown texture '%.*s' (expected none, checker, marble, "
+                               "wood or noise)", v.len, v.s);
+            m->texture = (uint8_t)n;
+        } else if (param == SCN_P_COUNT + 2) {
+            if ((n = ps_word(v, ps_palettes, RT_PAL_COUNT)) < 0)
+                return PS_FAIL(ps, v.s, "unknown palette '%.*s' (expected marble, wood, lava or "
+                               "sky)", v.len, v.s);
+            m->palette = (uint8_t)n;
+        } else {
+            if (ps_int(ps, v, "octaves", 1, RT_NOISE_MAX_OCTAVES, &n) != 0)
+                return -1;
+            m->octaves = (uint8_t)n;
+        }
+    }
+    if (m->palette == 0xFF) /* each noise texture has a palette of its own by default */
+        m->palette = m->texture == RT_TEX_WOOD ? RT_PAL_WOOD
+                     : m->texture == RT_TEX_NOISE ? RT_PAL_LAVA : RT_PAL_MARBLE;
+    if ((int64_t)m->reflect + m->transmit > SCN_ONE)
+        return PS_FAIL(ps, name.s, "material '%.*s': reflect + transmit must not exceed 1",
+                       name.len, name.s);
+    ps->material_line[d->nmaterials++] = ps->line;
+    return 0;
+}
+
+static int ps_object(ps_state *ps, ps_tok kw, int kind)
+{
+    scn_desc *d = &ps->f->desc;
+    if (d->nobjects >= RT_MAX_OBJECTS)
+        return PS_FAIL(ps, kw.s, "more than %d objects", RT_MAX_OBJECTS);
+    ps_tok name;
+    if (ps_new_name(ps, kw, &name, ps->f->object_names[d->nobjects]) != 0)
+        return -1;
+    scn_object *o = &d->objects[d->nobjects];
+    *o = (scn_object){.kind = (uint8_t)kind};
+    const char *expected = kind == RT_SPHERE ? "material, center, radius" : "material, normal, offset";
+    unsigned seen = 0;
+    ps_tok t, prev = {0};
+    int prev_arity = 0;
+    while (ps_next(ps, &t)) {
+        int param = ps_is(t, "material") ? SCN_P_COUNT : -1;
+        if (kind == RT_SPHERE)
+            param = ps_is(t, "center") ? SCN_P_CENTER : ps_is(t, "radius") ? SCN_P_RADIUS : param;
+        else
+            param = ps_is(t, "normal") ? SCN_P_NORMAL : ps_is(t, "offset") ? SCN_P_OFFSET : param;
+        if (param < 0)
+            return ps_bad_property(ps, t, kind == RT_SPHERE ? "a sphere" : "a plane", prev,
+                                   prev_arity, expected);
+        if (ps_once(ps, t, &seen, 1u << (param - SCN_P_CENTER)) != 0)
+            return -1;
+        prev = t;
+        if (param == SCN_P_COUNT) {
+            ps_tok v;
+            int owner = -1, item = 0;
+            if (!ps_next(ps, &v))
+                return PS_FAIL(ps, t.s, "'material' needs a material name");
+            if (ps_lookup(ps, v, &owner, &item) != 0 || owner != SCN_OWN_MATERIAL)
+                return PS_FAIL(ps, v.s, "undefined material '%.*s' (materials are defined before "
+                               "the objects that use them)", v.len, v.s);
+            o->material = (uint8_t)item;
+            prev_arity = 1;
+            continue;
+        }
+        int32_t *dst = param == SCN_P_CENTER ? o->center : param == SCN_P_RADIUS ? &o->radius
+                       : param == SCN_P_NORMAL ? o->normal : &o->offset;
+        if (ps_values(ps, t, param, dst) != 0)
+            return -1;
+        prev_arity = scn_params[param].arity;
+    }
+    static const char *const need_sphere[] = {"material", "center", "radius"};
+    static const char *const need_plane[] = {"material", "normal", "offset"};
+    const int bits_sphere[] = {SCN_P_COUNT, SCN_P_CENTER, SCN_P_RADIUS};
+    const int bits_plane[] = {SCN_P_COUNT, SCN_P_NORMAL, SCN_P_OFFSET};
+    for (int i = 0; i < 3; i++) {
+        int b = (kind == RT_SPHERE ? bits_sphere : bits_plane)[i] - SCN_P_CENTER;
+        if (!(seen & (1u << b)))
+            return PS_FAIL(ps, name.s, "%s '%.*s' has no '%s'", kind == RT_SPHERE ? "sphere" : "plane",
+                           name.len, name.s, (kind == RT_SPHERE ? need_sphere : need_plane)[i]);
+    }
+    ps->object_line[d->nobjects++] = ps->line;
+    return 0;
+}
+
+static const char *const ps_interps[SCN_INTERP_COUNT] = {"step", "linear", "smooth", "spline"};
+
+/* key TARGET TIME INTERP VALUES... */
+static int ps_key(ps_state *ps, ps_tok kw)
+{
+    scn_file *f = ps->f;
+    scn_desc *d = &f->desc;
+    ps_tok target, t;
+    if (!ps_next(ps, &target))
+        return PS_FAIL(ps, kw.s, "'key' needs a track (such as camera.eye), a time, an "
+                       "interpolation and values");
+    const char *dot = memchr(target.s, '.', (size_t)target.len);
+    if (!dot)
+        return PS_FAIL(ps, target.s, "'%.*s' is not a track: expected NAME.PARAMETER, such as "
+                       "camera.eye", target.len, target.s);
+    ps_tok item_name = {target.s, (int)(dot - target.s)};
+    ps_tok param_name = {dot + 1, target.len - item_name.len - 1};
+    int owner, item = 0;
+    if (ps_is(item_name, "camera"))
+        owner = SCN_OWN_CAMERA;
+    else if (ps_is(item_name, "scene"))
+        owner = SCN_OWN_SCENE;
+    else if (ps_lookup(ps, item_name, &owner, &item) != 0)
+        return PS_FAIL(ps, target.s, "unknown name '%.*s' in track '%.*s' (items are defined "
+                       "before their keys)", item_name.len, item_name.s, target.len, target.s);
+    int param = -1;
+    char have[160] = "";
+    for (int p = 0; p < SCN_P_COUNT; p++) {
+        if (scn_params[p].owner != owner)
+            continue;
+        if (ps_is(param_name, scn_params[p].name))
+            param = p;
+        strcat(have[0] ? strcat(have, ", ") : have, scn_params[p].name);
+    }
+    if (param < 0)
+        return PS_FAIL(ps, param_name.s, "'%.*s' has no animatable parameter '%.*s' (it has: %s)",
+                       item_name.len, item_name.s, param_name.len, param_name.s, have);
+    scn_key key = {0};
+    if (!ps_next(ps, &t))
+        return PS_FAIL(ps, target.s, "key '%.*s' needs a time in seconds", target.len, target.s);
+    ps_tok time_tok = t;
+    if (ps_time(ps, t, "key time", &key.time_ms) != 0)
+        return -1;
+    if (!ps_next(ps, &t))
+        return PS_FAIL(ps, target.s, "key '%.*s' needs an interpolation (step, linear, smooth or "
+                       "spline)", target.len, target.s);
+    int interp = ps_word(t, ps_interps, SCN_INTERP_COUNT);
+    if (interp < 0)
+        return PS_FAIL(ps, t.s, "unknown interpolation '%.*s' (expected step, linear, smooth or "
+                       "spline)", t.len, t.s);
+    key.interp = (uint8_t)interp;
+    if (ps_values(ps, target, param, key.v) != 0 || ps_end(ps) != 0)
+        return -1;
+
+    /* Its track: found, or appended. Keys of a track are kept together, in time order. */
+    int tr = 0;
+    while (tr < d->ntracks && !(f->tracks[tr].param == param && f->tracks[tr].item == item))
+        tr++;
+    if (tr == d->ntracks) {
+        if (d->ntracks >= SCN_MAX_TRACKS)
+            return PS_FAIL(ps, target.s, "more than %d animated parameters", SCN_MAX_TRACKS);
+        f->tracks[tr] = (scn_track){(uint8_t)param, (uint8_t)item, 0, 0};
+        int total = 0;
+        for (int i = 0; i < tr; i++)
+            total += f->tracks[i].count;
+        f->tracks[tr].first = (uint16_t)total;
+        d->ntracks++;
+    } else {
+        const scn_key *last = &f->keys[f->tracks[tr].first + f->tracks[tr].count - 1];
+        if (key.time_ms <= last->time_ms)
+            return PS_FAIL(ps, time_tok.s, "key at %.*s s is not after the previous key of '%.*s' "
+                           "(line %d)", time_tok.len, time_tok.s, target.len, target.s,
+                           ps->track_line[tr]);
+    }
+    int total = 0;
+    for (int i = 0; i < d->ntracks; i++)
+        total += f->tracks[i].count;
+    if (total >= SCN_MAX_KEYS)
+        return PS_FAIL(ps, kw.s, "more than %d keys", SCN_MAX_KEYS);
+    int at = f->tracks[tr].first + f->tracks[tr].count;
+    memmove(&f->keys[at + 1], &f->keys[at], (size_t)(total - at) * sizeof f->keys[0]);
+    f->keys[at] = key;
+    f->tracks[tr].count++;
+    for (int i = 0; i < d->ntracks; i++)
+        if (i != tr && f->tracks[i].first >= at)
+            f->tracks[i].first++;
+    ps->track_line[tr] = ps->line;
+    ps->track_col[tr] = (int)(time_tok.s - ps->ls) + 1;
+    return 0;
+}
+
+static int ps_statement(ps_state *ps)
+{
+    scn_desc *d = &ps->f->desc;
+    ps_tok kw, t;
+    if (!ps_next(ps, &kw))
+        return 0; /* blank or comment */
+    if (ps_is(kw, "camera"))
+        return ps_camera(ps, kw);
+    if (ps_is(kw, "light"))
+        return ps_light(ps, kw);
+    if (ps_is(kw, "material"))
+        return ps_material(ps, kw);
+    if (ps_is(kw, "sphere"))
+        return ps_object(ps, kw, RT_SPHERE);
+    if (ps_is(kw, "plane"))
+        return ps_object(ps, kw, RT_PLANE);
+    if (ps_is(kw, "key"))
+        return ps_key(ps, kw);
+    if (ps_is(kw, "background") || ps_is(kw, "ambient"))
+        return ps_values(ps, kw, ps_is(kw, "ambient") ? SCN_P_AMBIENT : SCN_P_BACKGROUND,
+                         ps_is(kw, "ambient") ? d->ambient : d->background) != 0 ? -1 : ps_end(ps);
+    if (ps_is(kw, "duration") || ps_is(kw, "fps") || ps_is(kw, "depth")) {
+        if (!ps_next(ps, &t))
+            return PS_FAIL(ps, kw.s, "'%.*s' needs a value", kw.len, kw.s);
+        int rc = ps_is(kw, "duration") ? ps_time(ps, t, "duration", &d->duration_ms)
+                 : ps_is(kw, "fps")    ? ps_int(ps, t, "fps", 1, SCN_MAX_FPS, &d->fps)
+                                       : ps_int(ps, t, "depth", 0, RT_MAX_DEPTH, &d->depth);
+        if (ps_is(kw, "duration"))
+            ps->have_duration = 1;
+        return rc != 0 ? -1 : ps_end(ps);
+    }
+    return PS_FAIL(ps, kw.s, "unknown statement '%.*s' (expected duration, fps, depth, background, "
+                   "ambient, camera, light, material, sphere, plane or key)", kw.len, kw.s);
+}
+
+/* Largest value of component c of (param, item) over its base value and its keys. */
+static int64_t ps_max_abs(const scn_desc *d, int param, int item, const int32_t *base, int arity)
+{
+    int64_t m = 0;
+    for (int c = 0; c < arity; c++)
+        m = base[c] > m ? base[c] : (-(int64_t)base[c] > m ? -(int64_t)base[c] : m);
+    for (int t = 0; t < d->ntracks; t++) {
+        const scn_track *tr = &d->tracks[t];
+        if (tr->param != param || tr->item != item)
+            continue;
+        for (int k = 0; k < tr->count; k++)
+            for (int c = 0; c < arity; c++) {
+                int64_t v = d->keys[tr->first + k].v[c];
+                v = v < 0 ? -v : v;
+                m = v > m ? v : m;
+            }
+    }
+    return m;
+}
+
+/* Checks that need the whole file: required statements, key times, limits across keys. */
+static int ps_finish(ps_state *ps)
+{
+    scn_desc *d = &ps->f->desc;
+    int last = ps->line > 1 ? ps->line - 1 : 1;
+    if (!ps->have_camera)
+        return ps_fail_at(ps, last, 1, "the scene has no camera (a line such as 'camera eye 0 2 8 "
+                          "at 0 1 0')");
+    if (d->nobjects == 0)
+        return ps_fail_at(ps, last, 1, "the scene has no sphere or plane");
+    for (int t = 0; t < d->ntracks; t++) {
+        const scn_track *tr = &d->tracks[t];
+        int32_t end = d->keys[tr->first + tr->count - 1].time_ms;
+        if (end > d->duration_ms)
+            return ps_fail_at(ps, ps->track_line[t], ps->track_col[t],
+                              "key at %ld.%03ld s is past the end of the scene (duration %ld.%03ld s)",
+                              (long)end / 1000, (long)end % 1000, (long)d->duration_ms / 1000,
+                              (long)d->duration_ms % 1000);
+    }
+    for (int i = 0; i < d->nmaterials; i++) {
+        const scn_material *m = &d->materials[i];
+        int64_t r = ps_max_abs(d, SCN_P_REFLECT, i, &m->reflect, 1);
+        int64_t tr = ps_max_abs(d, SCN_P_TRANSMIT, i, &m->transmit, 1);
+        if (r + tr > SCN_ONE)
+            return ps_fail_at(ps, ps->material_line[i], 1, "material '%s': reflect + transmit "
+                              "exceeds 1 in its keys", ps->f->material_names[i]);
+    }
+    for (int i = 0; i < d->nobjects; i++) {
+        const scn_object *o = &d->objects[i];
+        const scn_material *m = &d->materials[o->material];
+        if (m->texture == RT_TEX_NONE)
+            continue;
+        int64_t reach = PS_PLANE_REACH;
+        if (o->kind == RT_SPHERE)
+            reach = (ps_max_abs(d, SCN_P_CENTER, i, o->center, 3) +
+                     ps_max_abs(d, SCN_P_RADIUS, i, &o->radius, 1) + SCN_ONE - 1) / SCN_ONE;
+        int64_t scale = ps_max_abs(d, SCN_P_SCALE, o->material, &m->scale, 1);
+        if (scale * reach > (int64_t)PS_TEXTURE_REACH * SCN_ONE) {
+            char s[16];
+            scn_format_q16((int32_t)scale, s);
+            return ps_fail_at(ps, ps->object_line[i], 1, "%s '%s': texture scale %s of material "
+                              "'%s' takes its points %lld units out, beyond the %d that Q16.16 "
+                              "textures allow", o->kind == RT_SPHERE ? "sphere" : "plane",
+                              ps->f->object_names[i], s, ps->f->material_names[o->material],
+                              (long long)(scale * reach / SCN_ONE), PS_TEXTURE_REACH);
+        }
+    }
+    d->tracks = ps->f->tracks;
+    d->keys = ps->f->keys;
+    return 0;
+}
+
+int scn_parse(const char *path, const char *text, size_t len, scn_file *f, char *err,
+              size_t errlen)
+{
+    static ps_state ps;
+    memset(&ps, 0, sizeof ps);
+    ps.path = path;
+    ps.err = err;
+    ps.errlen = errlen;
+    ps.f = f;
+    memset(f, 0, sizeof *f);
+    scn_desc *d = &f->desc;
+    /* Defaults (docs/scene-format.md). */
+    d->fps = 25;
+    d->depth = 5;
+    d->up[1] = SCN_ONE;
+    d->fov = 50 * SCN_ONE;
+    d->ambient[0] = d->ambient[1] = d->ambient[2] = SCN_ONE / 10;
+    d->tracks = f->tracks;
+    d->keys = f->keys;
+
+    const char *s = text, *end = text + len;
+    for (ps.line = 1; s < end; ps.line++) {
+        const char *nl = memchr(s, '\n', (size_t)(end - s));
+        const char *le = nl ? nl : end;
+        ps.ls = ps.p = s;
+        if (le - s > SCN_MAX_LINE)
+            return ps_fail_at(&ps, ps.line, SCN_MAX_LINE + 1, "line longer than %d characters",
+                              SCN_MAX_LINE);
+        if (le > s && le[-1] == '\r')
+            le--;
+        ps.le = le;
+        for (const char *c = s; c < le; c++) {
+            unsigned char ch = (unsigned char)*c;
+            if (ch == '#') {
+                ps.le = c;
+                break;
+            }
+            if ((ch < 32 && ch != '\t') || ch >= 127)
+                return PS_FAIL(&ps, c, "unexpected character 0x%02x (scene files are plain ASCII "
+                               "text)", ch);
+        }
+        if (ps_statement(&ps) != 0)
+            return -1;
+        s = nl ? nl + 1 : end;
+    }
+    return ps_finish(&ps);
+}
+
+int scn_load(const char *path, scn_file *f, char *err, size_t errlen)
+{
+    FILE *fp = fopen(path, "rb");
+    if (!fp) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    char *buf = malloc((size_t)SCN_MAX_FILE_BYTES + 1);
+    if (!buf) {
+        fclose(fp);
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    size_t n = fread(buf, 1, (size_t)SCN_MAX_FILE_BYTES + 1, fp);
+    int bad = ferror(fp);
+    fclose(fp);
+    int rc = -1;
+    if (bad)
+        snprintf(err, errlen, "%s: cannot read (is it a directory?)", path);
+    else if (n > (size_t)SCN_MAX_FILE_BYTES)
+        snprintf(err, errlen, "%s: larger than %ld bytes: not a scene file", path, SCN_MAX_FILE_BYTES);
+    else
+        rc = scn_parse(path, buf, n, f, err, errlen);
+    free(buf);
+    return rc;
+}
+
+static void ps_write_ints(FILE *out, const int32_t *v, int n)
+{
+    fputc('{', out);
+    for (int i = 0; i < n; i++)
+        fprintf(out, "%s%ld", i ? ", " : "", (long)v[i]);
+    fputc('}', out);
+}
+
+int scn_write_c(FILE *out, const scn_desc *d, const char *name, const char *source_path)
+{
+    fprintf(out, "/* %s.c: the scene %s compiled into the program (generated by rt-scenec). */\n",
+            name, source_path);
+    fprintf(out, "#include <stddef.h>\n\n#include \"scn.h\"\n\n");
+    int nkeys = 0;
+    for (int t = 0; t < d->ntracks; t++)
+        nkeys += d->tracks[t].count;
+    if (d->ntracks) {
+        fprintf(out, "static const scn_track %s_tracks[%d] = {\n", name, d->ntracks);
+        for (int t = 0; t < d->ntracks; t++)
+            fprintf(out, "    {%d, %d, %d, %d},\n", d->tracks[t].param, d->tracks[t].item,
+                    d->tracks[t].first, d->tracks[t].count);
+        fprintf(out, "};\n\nstatic const scn_key %s_keys[%d] = {\n", name, nkeys);
+        for (int k = 0; k < nkeys; k++) {
+            fprintf(out, "    {%ld, %d, ", (long)d->keys[k].time_ms, d->keys[k].interp);
+            ps_write_ints(out, d->keys[k].v, 3);
+            fprintf(out, "},\n");
+        }
+        fprintf(out, "};\n\n");
+    }
+    fprintf(out, "const scn_desc %s = {\n", name);
+    fprintf(out, "    .duration_ms = %ld, .fps = %ld, .depth = %ld,\n", (long)d->duration_ms,
+            (long)d->fps, (long)d->depth);
+    const struct { const char *n; const int32_t *v; } vecs[] = {
+        {"background", d->background}, {"ambient", d->ambient}, {"eye", d->eye}, {"at", d->at},
+        {"up", d->up}};
+    for (int i = 0; i < 5; i++) {
+        fprintf(out, "    .%s = ", vecs[i].n);
+        ps_write_ints(out, vecs[i].v, 3);
+        fprintf(out, ",\n");
+    }
+    fprintf(out, "    .fov = %ld,\n", (long)d->fov);
+    fprintf(out, "    .nobjects = %d, .nlights = %d, .nmaterials = %d, .ntracks = %d,\n",
+            d->nobjects, d->nlights, d->nmaterials, d->ntracks);
+    fprintf(out, "    .objects = {\n");
+    for (int i = 0; i < d->nobjects; i++) {
+        const scn_object *o = &d->objects[i];
+        fprintf(out, "        {%d, %d, ", o->kind, o->material);
+        ps_write_ints(out, o->center, 3);
+        fprintf(out, ", %ld, ", (long)o->radius);
+        ps_write_ints(out, o->normal, 3);
+        fprintf(out, ", %ld},\n", (long)o->offset);
+    }
+    fprintf(out, "    },\n    .lights = {\n");
+    for (int i = 0; i < d->nlights; i++) {
+        fprintf(out, "        {");
+        ps_write_ints(out, d->lights[i].pos, 3);
+        fprintf(out, ", ");
+        ps_write_ints(out, d->lights[i].color, 3);
+        fprintf(out, "},\n");
+    }
+    fprintf(out, "    },\n    .materials = {\n");
+    for (int i = 0; i < d->nmaterials; i++) {
+        const scn_material *m = &d->materials[i];
+        fprintf(out, "        {");
+        ps_write_ints(out, m->diffuse, 3);
+        fprintf(out, ", ");
+        ps_write_ints(out, m->color2, 3);
+        fprintf(out, ", %ld, %ld, %ld, %ld, %ld, %ld, %ld, %d, %d, %d, %d},\n", (long)m->ambient,
+                (long)m->specular, (long)m->reflect, (long)m->transmit, (long)m->ior,
+                (long)m->scale, (long)m->turbulence, m->shininess, m->texture, m->palette,
+                m->octaves);
+    }
+    fprintf(out, "    },\n");
+    fprintf(out, "    .tracks = %s%s,\n    .keys = %s%s,\n};\n", d->ntracks ? name : "NULL",
+            d->ntracks ? "_tracks" : "", d->ntracks ? name : "NULL", d->ntracks ? "_keys" : "");
+    return ferror(out) ? -1 : 0;
+}
