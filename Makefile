@@ -5,6 +5,8 @@
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      render frames with both builds side by side and print ms per frame
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
+#   make bench-effects    effects on demand vs every effect forced on, per example scene
+#   make scene-programs   compile each scene into its own program; code size; same frames
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
@@ -50,7 +52,7 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-subsample clean distclean setup san
+.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -153,8 +155,17 @@ bench-subsample: setup
 	@$(MAKE) --no-print-directory all
 	@tests/bench_subsample.sh
 
+bench-effects: setup
+	@$(MAKE) --no-print-directory all
+	@tests/bench_effects.sh
+
+scene-programs: setup
+	@$(MAKE) --no-print-directory all
+	@tests/scene_programs.sh --check
+
 clean:
-	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(HOST_PROGS)
+	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
+	       $(BUILD)/scenes $(BUILD)/bench $(HOST_PROGS)
 
 distclean:
 	rm -rf $(BUILD)

@@ -114,6 +114,7 @@ typedef struct rt_scene {
     unsigned effects;                   /* RT_FX_* bits the frame needs */
     int reach_depth;                    /* recursion depth the materials can reach */
     uint32_t occluders[RT_MAX_LIGHTS];  /* per light: objects that can shadow something */
+    int forced;                         /* 1: every effect forced on, nothing skipped */
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is

@@ -84,12 +84,14 @@ static void scene_derive_effects(rt_scene *s)
             fx |= RT_FX_SHADOW;
     }
     s->effects = fx;
+    s->forced = 0;
 }
 
 void rt_scene_force_effects(rt_scene *s)
 {
     s->effects = RT_FX_ALL;
     s->reach_depth = RT_MAX_DEPTH;
+    s->forced = 1;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
 }

@@ -90,7 +90,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             /* A convex surface never shadows its own lit side; seen from inside (glass) it
              * can. Lights nothing can occlude cast no shadow ray at all. */
             uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-            if (!inside)
+            if (!inside && !s->forced)
                 occ &= ~((uint32_t)1 << id);
             int blocked = 0;
             if (occ) {

@@ -210,6 +210,66 @@ echo "not an image" >"$T/text.png"
 expect_error 2 "bad PNG\|not a PNG" $B/rt-cmp "$T/text.png" "$T/det1-fixed.ppm"
 expect_error 2 "sizes differ" $B/rt-cmp "$T/stats.png" "$T/det1-fixed.png"
 
+# ---- example scenes: fixed vs float, derived effects, no rays for unused effects ---------------
+# The effects each scene is written to use (docs/scene-format.md); checked at every moment rendered.
+declare -A WANT_FX=(
+  [intro]=shadow,specular,reflect,refract,texture,noise
+  [demo]=shadow,specular,reflect,refract,texture,noise
+  [diffuse]=none
+  [shadows]=shadow
+  [mirrors]=shadow,specular,reflect
+  [glass]=shadow,specular,reflect,refract,texture
+  [textures]=shadow,texture,noise
+)
+for scene in scenes/*.scene; do
+  name=$(basename "${scene%.scene}")
+  dur=$(awk '$1 == "duration" { printf "%d", $2 * 1000 }' "$scene")
+  step=$((dur / 4))
+  [ "$name" = intro ] && step=4000
+  worst="" bad=""
+  for ((ms = 0; ms <= dur; ms += step)); do
+    t=$((ms / 1000)).$(printf '%03d' $((ms % 1000)))
+    sx=$($B/rt-fixed render --scene "$scene" --time "$t" --stats -o "$T/sc-$name-x.png" 2>&1) || { bad="$bad fixed render failed at $t s: $sx;"; continue; }
+    sf=$($B/rt-float render --scene "$scene" --time "$t" --stats -o "$T/sc-$name-f.png" 2>&1) || { bad="$bad float render failed at $t s;"; continue; }
+    line=$($B/rt-cmp "$T/sc-$name-x.png" "$T/sc-$name-f.png")
+    psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
+    awk -v p="$psnr" 'BEGIN { exit !(p == "inf" || p >= 38) }' || bad="$bad psnr $psnr dB at $t s;"
+    worst=$(awk -v a="$worst" -v p="$psnr" 'BEGIN { if (p == "inf") p = 999; print (a == "" || p < a) ? p : a }')
+    for out in "$sx" "$sf"; do
+      fx=$(sed -n 's/^effects=//p' <<<"$out")
+      [ "$fx" = "${WANT_FX[$name]:-?}" ] || bad="$bad effects=$fx at $t s (want ${WANT_FX[$name]:-a WANT_FX entry});"
+      for kind in shadow reflect refract; do
+        if [[ ",$fx," != *",$kind,"* ]] && ! grep -q "^rays_$kind=0$" <<<"$out"; then
+          bad="$bad $(grep "^rays_$kind=" <<<"$out") without $kind;"
+        fi
+      done
+    done
+  done
+  if [ -z "$bad" ]; then
+    pass "scene $name: fixed vs float >= 38 dB at every moment tested (worst $worst dB), effects=${WANT_FX[$name]}, no ray of an unused kind"
+  else
+    fail "scene $name:$bad"
+  fi
+done
+# A scene compiled into its own program (rt-scenec, only the scene's effects linked) renders
+# exactly what render --scene renders.
+if tests/scene_programs.sh --check >"$T/programs.log" 2>&1; then
+  pass "every scene compiled into its own program renders the same bytes as render --scene"
+else
+  fail "compiled scene programs (see below)"
+fi
+sed 's/^/       /' "$T/programs.log"
+# Effects on demand and every effect forced on give the same picture.
+for real in fixed float; do
+  $B/rt-$real render $DEMO --time 5 --effects all -o "$T/fx-all-$real.ppm" 2>/dev/null
+  $B/rt-$real render $DEMO --time 5 -o "$T/fx-auto-$real.ppm" 2>/dev/null
+  if [ -s "$T/fx-all-$real.ppm" ] && cmp -s "$T/fx-all-$real.ppm" "$T/fx-auto-$real.ppm"; then
+    pass "rt-$real: --effects auto and --effects all render the demo to identical bytes"
+  else
+    fail "rt-$real: --effects auto and --effects all differ"
+  fi
+done
+
 # ---- bad scene files: the table in tests/bad_scenes.txt --------------------------------------
 # Each case: exit 2, one line "FILE:LINE:COL: words", and the same message from both builds.
 BAD=$T/bad

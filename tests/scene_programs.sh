@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# scene_programs.sh: compiles every scene into its own program (rt-scenec + the tracer built with
+# only the scene's effects), prints the code size of each, and checks that each renders exactly
+# what `rt-fixed render --scene` renders. Usage: tests/scene_programs.sh [--check] [SCENE...]
+# Expects `make all`. With --check, exits non-zero when a compiled scene's frame differs.
+set -u
+cd "$(dirname "$0")/.."
+B=build
+OUT=$B/scenes
+mkdir -p "$OUT"
+check=0
+if [ "${1:-}" = --check ]; then check=1; shift; fi
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=(scenes/*.scene)
+
+CC=${CC:-gcc}
+CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp-contract=off -fno-strict-aliasing -O2"
+CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
+[ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
+INC="-Ifixed -Isrc -isystem $B/deps/libfixmath/libfixmath"
+CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c"
+LIB=$B/obj/fixed/libfixmath.a
+
+# Builds program $1 from generated scene source $2 and effects header $3.
+build() {
+  local objs=() f o
+  mkdir -p "$1.obj"
+  for f in $CORE; do
+    o="$1.obj/$(basename "${f%.c}").o"
+    $CC $CFLAGS $INC -include "$3" -c "$f" -o "$o" || return 1
+    objs+=("$o")
+  done
+  $CC -std=c11 -O2 -DREAL_FIXED=1 $INC -c "$2" -o "$1.obj/compiled.o" &&
+  $CC -std=c11 -O2 -DREAL_FIXED=1 -DFIXMATH_NO_CACHE $INC -c src/tools/still.c -o "$1.obj/still.o" &&
+  $CC -O2 -Wl,--gc-sections -o "$1" "${objs[@]}" "$1.obj/compiled.o" "$1.obj/still.o" "$LIB" -lm
+}
+
+# Bytes of code (.text) of the tracer, libfixmath and the scene data in a program.
+text_size() { size -A "$1" | awk '$1 == ".text" { t = $2 } $1 == ".rodata" { r = $2 } END { print t, r }'; }
+
+bad=0
+printf '%-24s %-44s %10s %10s %10s\n' scene effects text rodata "text vs all"
+for scene in "${scenes[@]}"; do
+  name=$(basename "${scene%.scene}")
+  gen=$OUT/$name
+  if ! $B/rt-scenec "$scene" -o "$gen.c" --effects "$gen-fx.h" 2>"$gen.log"; then
+    cat "$gen.log"; bad=1; continue
+  fi
+  printf '#define RT_COMPILED_EFFECTS RT_FX_ALL\n' >"$gen-all.h"
+  if ! build "$gen-fixed" "$gen.c" "$gen-fx.h" || ! build "$gen-all" "$gen.c" "$gen-all.h"; then
+    echo "$name: build failed"; bad=1; continue
+  fi
+  read -r t r < <(text_size "$gen-fixed")
+  read -r ta _ < <(text_size "$gen-all")
+  fx=$(sed -n 's|.*RT_COMPILED_EFFECTS [0-9]*u /\*\(.*\) \*/|\1|p' "$gen-fx.h")
+  printf '%-24s %-44s %10d %10d %9d%%\n' "$name" "${fx:- none}" "$t" "$r" $((t * 100 / ta))
+  if [ $check = 1 ]; then
+    # the compiled program's frame equals the file's, byte for byte, at three moments
+    dur=$(sed -n 's/^ *\.duration_ms = \([0-9]*\),.*/\1/p' "$gen.c")
+    for ms in 0 $((dur / 2)) "$dur"; do
+      "$gen-fixed" "$ms" 160 120 >"$gen-$ms.ppm"
+      s=$((ms / 1000)).$(printf '%03d' $((ms % 1000)))
+      $B/rt-fixed render --scene "$scene" --time "$s" --size 160x120 -o "$gen-$ms-ref.ppm" 2>/dev/null
+      if ! cmp -s "$gen-$ms.ppm" "$gen-$ms-ref.ppm"; then
+        echo "  $name: compiled program differs from render --scene at $s s"
+        bad=1
+      fi
+    done
+  fi
+done
+echo "(x86-64 host, -O2, unused sections dropped; 'text vs all' compares with the same program built with every effect)"
+exit $bad
