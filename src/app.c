@@ -343,6 +343,7 @@ static int app_render(int argc, char **argv)
         printf("rays_primary=%lu\nrays_shadow=%lu\nrays_reflect=%lu\nrays_refract=%lu\n",
                (unsigned long)stats.rays_primary, (unsigned long)stats.rays_shadow,
                (unsigned long)stats.rays_reflect, (unsigned long)stats.rays_refract);
+        printf("shadow_tests=%lu\n", (unsigned long)stats.shadow_tests);
         if (o.mode == RT_MODE_ADAPTIVE) {
             for (int l = 0, size = o.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
                 printf("squares_%d=%lu\nsplit_%d=%lu\n", size, (unsigned long)stats.squares[l],

@@ -168,6 +168,7 @@ typedef struct rt_params {
 
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
+    uint32_t shadow_tests; /* object intersection tests made by shadow rays */
     uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
     uint32_t split_by[5];             /* adaptive: splits by enum rt_split_reason */

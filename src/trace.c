@@ -25,12 +25,16 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
 }
 
 /* Does any object of the set `occ` block the segment from org along d of length dist? */
-static int trace_occluded(const rt_scene *s, uint32_t occ, vec3 org, dir3 d, real dist)
+static int trace_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d,
+                          real dist)
 {
     for (int i = 0; occ; i++, occ >>= 1) {
+        if (!(occ & 1u))
+            continue;
         const rt_object *o = &s->objects[i];
         real hit;
-        if ((occ & 1u) && rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
+        st->shadow_tests++;
+        if (rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
             return 1;
     }
     return 0;
@@ -95,7 +99,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             int blocked = 0;
             if (occ) {
                 c->stats->rays_shadow++;
-                blocked = trace_occluded(s, occ, p_out, l, dist);
+                blocked = trace_occluded(s, c->stats, occ, p_out, l, dist);
             }
             if (!blocked) {
                 state = 1;

@@ -281,16 +281,17 @@ awk -v dir="$BAD" '
 for want in "$BAD"/case*.want; do
   scene=${want%.want}.scene
   expected="$scene:$(cat "$want")"
-  errs=""
-  for real in fixed float; do
-    err=$($B/rt-$real render --scene "$scene" --size 8x8 -o "$T/bad.ppm" 2>&1 >/dev/null)
+  errs="" msgs=""
+  # both builds, and both again under ASan + UBSan
+  for prog in rt-fixed rt-float san-fixed/rt san-float/rt; do
+    err=$($B/$prog render --scene "$scene" --size 8x8 -o "$T/bad.ppm" 2>&1 >/dev/null)
     rc=$?
     if [ $rc -ne 2 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || [[ "$err" != *"$expected"* ]]; then
-      errs="$errs rt-$real: exit $rc: $err;"
+      errs="$errs $prog: exit $rc: $err;"
     fi
-    eval "msg_$real=\${err#rt-$real: }"
+    msgs="$msgs${err#*: }"$'\n'
   done
-  if [ -z "$errs" ] && [ "$msg_fixed" = "$msg_float" ]; then
+  if [ -z "$errs" ] && [ "$(sort -u <<<"$msgs" | grep -c .)" = 1 ]; then
     pass "bad scene: ${err#*: }"
   else
     fail "bad scene $(basename "$scene"): want '$expected':$errs"
