@@ -1,7 +1,7 @@
 # Makefile: builds fixray's host programs (rt-float, rt-fixed, rt-cmp) and runs the tests.
 #
 #   make            build/rt-float, build/rt-fixed, build/rt-cmp
-#   make run        set up if needed, render the demo scene headless
+#   make run        set up if needed, render stills of the intro headless with both builds
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      render frames with both builds side by side and print ms per frame
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
@@ -134,14 +134,20 @@ $(eval $(call san_progs,san-fixed))
 setup:
 	@./setup.sh
 
+# Stills of the intro, one per part, rendered by both builds and compared (the player is
+# issue [sdl]); then the traced points of one of them.
+INTRO_STILLS := 8 17 25 35 44
 run: setup
 	@$(MAKE) --no-print-directory all
 	@mkdir -p $(BUILD)/out
-	$(BUILD)/rt-fixed render --size 640x480 -o $(BUILD)/out/demo-fixed.png --stats
-	$(BUILD)/rt-float render --size 640x480 -o $(BUILD)/out/demo-float.png --stats
-	$(BUILD)/rt-cmp $(BUILD)/out/demo-fixed.png $(BUILD)/out/demo-float.png
-	$(BUILD)/rt-fixed render --size 640x480 --show-samples -o $(BUILD)/out/demo-samples.png
-	@echo "run: the demo frame is in $(BUILD)/out/demo-fixed.png (fixed point) and $(BUILD)/out/demo-float.png (float); $(BUILD)/out/demo-samples.png shows the traced points"
+	@for t in $(INTRO_STILLS); do \
+	  $(BUILD)/rt-fixed render --size 640x480 --time $$t -o $(BUILD)/out/intro-$$t-fixed.png || exit 1; \
+	  $(BUILD)/rt-float render --size 640x480 --time $$t -o $(BUILD)/out/intro-$$t-float.png || exit 1; \
+	  printf 'intro t=%ss, fixed vs float: ' $$t; \
+	  $(BUILD)/rt-cmp $(BUILD)/out/intro-$$t-fixed.png $(BUILD)/out/intro-$$t-float.png || exit 1; \
+	done
+	$(BUILD)/rt-fixed render --size 640x480 --time 35 --show-samples --stats -o $(BUILD)/out/intro-35-samples.png
+	@echo "run: intro stills in $(BUILD)/out/intro-T-fixed.png and intro-T-float.png (T = $(INTRO_STILLS) s); intro-35-samples.png shows the points adaptive subsampling traced"
 
 test: setup
 	@$(MAKE) --no-print-directory all san

@@ -10,17 +10,19 @@ size=${1:-320x240}
 rounds=${2:-3}
 shift 2 || shift $#
 extra=("$@")
-times="0 4 8 12 16 20"
+# SCENE and TIMES (seconds) choose what is measured: by default the demo scene at six times.
+scene=${SCENE:-scenes/demo.scene}
+times=${TIMES:-0 4 8 12 16 20}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 declare -A sum worst
 for real in float fixed; do sum[$real]=0; worst[$real]=0; done
 n=0
-echo "bench: demo scene at $size${extra[*]:+ (${extra[*]})}, sample times: $times s, $rounds rounds; $(nproc) cores, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)"
+echo "bench: $scene at $size${extra[*]:+ (${extra[*]})}, sample times: $times s, $rounds rounds; $(nproc) cores, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)"
 for r in $(seq "$rounds"); do
   for t in $times; do
     for real in float fixed; do
-      ms=$(build/rt-$real render --size "$size" --time "$t" ${extra[@]+"${extra[@]}"} --stats -o "$out/f.ppm" 2>/dev/null | sed -n 's/^ms=//p')
+      ms=$(build/rt-$real render --scene "$scene" --size "$size" --time "$t" ${extra[@]+"${extra[@]}"} --stats -o "$out/f.ppm" 2>/dev/null | sed -n 's/^ms=//p')
       sum[$real]=$(awk -v a="${sum[$real]}" -v b="$ms" 'BEGIN { print a + b }')
       worst[$real]=$(awk -v a="${worst[$real]}" -v b="$ms" 'BEGIN { print (b > a ? b : a) }')
     done

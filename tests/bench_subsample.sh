@@ -13,7 +13,9 @@ cd "$(dirname "$0")/.."
 rounds=${1:-3}
 shift || true
 sizes=${*:-320x240 640x480}
-times="0 4 8 12 16 20"
+# SCENE and TIMES (seconds) choose what is measured: by default the demo scene at six times.
+scene=${SCENE:-scenes/demo.scene}
+times=${TIMES:-0 4 8 12 16 20}
 modes="full full+rc adaptive"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -26,7 +28,7 @@ opts() {
   esac
 }
 
-echo "bench-subsample: demo scene, times $times s, $rounds timing rounds, one thread;" \
+echo "bench-subsample: $scene, times $times s, $rounds timing rounds, one thread;" \
   "$(nproc) cores, $(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)"
 printf '%-8s %-6s %-9s %9s %9s %9s %9s %9s %9s %8s %8s %9s %9s\n' size build mode samples shadow \
   reflect refract ms_mean ms_worst x_samples x_time psnr_min psnr_mean
@@ -43,7 +45,7 @@ for size in $sizes; do
       for real in float fixed; do
         for m in $modes; do
           # shellcheck disable=SC2046
-          s=$(build/rt-$real render --size "$size" --time "$t" $(opts $m) --stats \
+          s=$(build/rt-$real render --scene "$scene" --size "$size" --time "$t" $(opts $m) --stats \
                 -o "$out/$real-$m-$t.ppm" 2>/dev/null)
           v=$(sed -n 's/^ms=//p' <<<"$s")
           ms[$real,$m]=$(awk -v a="${ms[$real,$m]}" -v b="$v" 'BEGIN { print a + b }')
