@@ -312,6 +312,13 @@ expect_error 2 "larger than 1048576 bytes" $R render --scene "$BAD/huge.scene"
 expect_error 2 "past the end of scenes/demo.scene" $R render $DEMO --time 30 -o "$T/x.png"
 expect_error 2 "past the last frame of scenes/demo.scene (600 at 25 fps)" $R render $DEMO --frame 601 -o "$T/x.png"
 expect_error 2 "expected auto or all" $R render --effects some -o "$T/x.png"
+# rt-scenec: the same messages; never a half-written output
+expect_error 2 "case08.scene:2:19: undefined material 'glas'" $B/rt-scenec "$BAD/case08.scene" -o "$T/sc.c"
+expect_error 2 "cannot open" $B/rt-scenec "$T/none.scene" -o "$T/sc.c"
+expect_error 2 "no output given" $B/rt-scenec scenes/demo.scene
+expect_error 2 "not a C identifier" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --name 9lives
+expect_error 1 "cannot write" $B/rt-scenec scenes/demo.scene -o "$T/no/such/dir/sc.c"
+if ls "$T"/no/such/dir/sc.c* "$T"/sc.c >/dev/null 2>&1; then fail "rt-scenec left an output behind after errors"; else pass "rt-scenec leaves no output behind after errors"; fi
 
 echo
 echo "$passed passed, $failed failed"

@@ -74,13 +74,14 @@ int main(int argc, char **argv)
         }
     }
     if (!in || !out) {
-        sc_usage(stderr);
+        fprintf(stderr, "%s: %s (usage: %s SCENE -o OUT.c; see %s --help)\n", sc_name,
+                !in ? "no scene file given" : "no output given (-o OUT.c)", sc_name, sc_name);
         return 2;
     }
     static scn_file f;
     char err[512], tmp[4096];
     if (scn_load(in, &f, err, sizeof err) != 0) {
-        fprintf(stderr, "%s\n", err);
+        fprintf(stderr, "%s: %s\n", sc_name, err);
         return 2;
     }
     FILE *fo = sc_open(out, tmp, sizeof tmp);
