@@ -26,11 +26,15 @@ static int scene_plane_occludes(const rt_scene *s, int pl, vec3 lp)
             lo = r_sub(c, o->radius);
             hi = r_add(c, o->radius);
         } else {
-            unit cs = d3_dot(o->normal, p->normal);
-            if (cs < U(0.999999) && cs > U(-0.999999))
-                return 1; /* planes that are not parallel cross */
+            /* Planes that are not exactly parallel cross somewhere, however far out. */
+            int same = o->normal.x == p->normal.x && o->normal.y == p->normal.y &&
+                       o->normal.z == p->normal.z;
+            dir3 neg = d3_neg(o->normal);
+            int opposite = neg.x == p->normal.x && neg.y == p->normal.y && neg.z == p->normal.z;
+            if (!same && !opposite)
+                return 1;
             /* points x of o have x . n_o = offset_o, so x . n_p = +-offset_o */
-            lo = hi = r_sub(cs > 0 ? o->offset : r_neg(o->offset), p->offset);
+            lo = hi = r_sub(same ? o->offset : r_neg(o->offset), p->offset);
         }
         if (sl > 0 ? lo < 0 : hi > 0)
             return 1;
@@ -43,9 +47,15 @@ static void scene_derive_effects(rt_scene *s)
 {
     unsigned fx = 0;
     int secondary = 0, self_loop = 0;
+    uint32_t self_shadow = 0; /* spheres whose inside some ray can reach */
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         const rt_material *m = &s->materials[o->material];
+        /* Rays get inside a sphere by refraction, or by starting there: the camera inside. */
+        if (o->kind == RT_SPHERE &&
+            (m->transmit > 0 ||
+             w_len2(v3_sub(s->camera.eye, o->center)) <= w_sq(r_add(o->radius, R_EPS_OFFSET))))
+            self_shadow |= (uint32_t)1 << i;
         if (m->specular > 0 && s->nlights > 0)
             fx |= RT_FX_SPECULAR;
         if (m->transmit > 0)
@@ -59,23 +69,23 @@ static void scene_derive_effects(rt_scene *s)
             fx |= RT_FX_NOISE;
         if (m->reflect > 0 || m->transmit > 0) {
             secondary++;
-            /* a ray refracted into a sphere meets the sphere again from inside */
-            if (m->transmit > 0 && o->kind == RT_SPHERE)
+            /* a ray inside a sphere meets the sphere again */
+            if (self_shadow & ((uint32_t)1 << i))
                 self_loop = 1;
         }
     }
-    /* A convex object's mirror ray never meets the object again, so one such object alone
-     * is a ray tree of depth 1; two can mirror each other without end. */
+    /* A convex object's mirror ray never meets the object again from outside, so one such
+     * object alone is a ray tree of depth 1; two can mirror each other without end. */
     s->reach_depth = secondary == 0 ? 0 : (secondary == 1 && !self_loop ? 1 : RT_MAX_DEPTH);
 
     for (int l = 0; l < RT_MAX_LIGHTS; l++) {
         uint32_t occ = 0;
         for (int i = 0; i < s->nobjects && l < s->nlights; i++) {
-            /* A sphere can shadow any other object, and a glass sphere its own inside; a plane
-             * only what lies beyond it. */
+            /* A sphere can shadow any other object, and its own inside when a ray can get
+             * there; a plane only what lies beyond it. */
             const rt_object *o = &s->objects[i];
             if (o->kind == RT_SPHERE
-                    ? s->nobjects > 1 || s->materials[o->material].transmit > 0
+                    ? s->nobjects > 1 || (self_shadow & ((uint32_t)1 << i))
                     : scene_plane_occludes(s, i, s->lights[l].pos))
                 occ |= (uint32_t)1 << i;
         }

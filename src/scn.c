@@ -87,6 +87,14 @@ void scn_track_value(const scn_desc *d, const scn_track *tr, int32_t t_ms, int32
             int64_t h00 = 2 * u3 - 3 * u2 + SCN_ONE, h10 = u3 - 2 * u2 + u;
             int64_t h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
             v = scn_round16(h00 * p1 + h10 * m1 + h01 * p2 + h11 * m2);
+            /* Keep the curve within the four keys it is shaped by: whatever the parser checked
+             * on the keys then holds between them too. */
+            int64_t lo = p1 < p2 ? p1 : p2, hi = p1 < p2 ? p2 : p1;
+            lo = a0->v[c] < lo ? a0->v[c] : lo;
+            hi = a0->v[c] > hi ? a0->v[c] : hi;
+            lo = b1->v[c] < lo ? b1->v[c] : lo;
+            hi = b1->v[c] > hi ? b1->v[c] : hi;
+            v = v < lo ? lo : (v > hi ? hi : v);
             break;
         }
         }
@@ -215,7 +223,12 @@ unsigned scn_effects_union(const scn_desc *d)
         if (m->texture == RT_TEX_MARBLE || m->texture == RT_TEX_WOOD || m->texture == RT_TEX_NOISE)
             fx |= RT_FX_NOISE;
     }
-    if (d->nlights > 0 && d->nobjects > 1)
+    /* Two objects can shadow each other, and a sphere its own inside (seen through glass or
+     * by a camera inside it). */
+    int spheres = 0;
+    for (int i = 0; i < d->nobjects; i++)
+        spheres += d->objects[i].kind == RT_SPHERE;
+    if (d->nlights > 0 && (d->nobjects > 1 || spheres > 0))
         fx |= RT_FX_SHADOW;
     return fx;
 }

@@ -259,6 +259,21 @@ else
   fail "compiled scene programs (see below)"
 fi
 sed 's/^/       /' "$T/programs.log"
+# Regression scenes where a derivation once skipped what the scene needed: auto and all agree,
+# in both builds, with no numeric event; and each compiled into its own program.
+for scene in tests/scenes/fx-*.scene; do
+  name=$(basename "${scene%.scene}")
+  t=0; grep -q '^duration' "$scene" && t=5
+  bad=""
+  for real in fixed float; do
+    a=$($B/san-$real/rt render --scene "$scene" --time $t --size 64x48 --stats -o "$T/$name-auto.ppm" 2>&1)
+    $B/san-$real/rt render --scene "$scene" --time $t --size 64x48 --effects all -o "$T/$name-all.ppm" 2>/dev/null
+    cmp -s "$T/$name-auto.ppm" "$T/$name-all.ppm" || bad="$bad $real auto/all differ;"
+    grep -q '^fx_overflow=0$' <<<"$a" && grep -q '^fx_domain=0$' <<<"$a" || bad="$bad $real numeric events;"
+  done
+  tests/scene_programs.sh --check "$scene" >"$T/$name-prog.log" 2>&1 || bad="$bad compiled program differs;"
+  if [ -z "$bad" ]; then pass "effects regression $name: auto = all, compiled = file, no numeric event"; else fail "effects regression $name:$bad"; fi
+done
 # Effects on demand and every effect forced on give the same picture.
 for real in fixed float; do
   $B/rt-$real render $DEMO --time 5 --effects all -o "$T/fx-all-$real.ppm" 2>/dev/null
@@ -318,6 +333,7 @@ expect_error 2 "cannot open" $B/rt-scenec "$T/none.scene" -o "$T/sc.c"
 expect_error 2 "no output given" $B/rt-scenec scenes/demo.scene
 expect_error 2 "not a C identifier" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --name 9lives
 expect_error 1 "cannot write" $B/rt-scenec scenes/demo.scene -o "$T/no/such/dir/sc.c"
+expect_error 1 "sc.h: cannot write" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --effects "$T/no/such/dir/sc.h"
 if ls "$T"/no/such/dir/sc.c* "$T"/sc.c >/dev/null 2>&1; then fail "rt-scenec left an output behind after errors"; else pass "rt-scenec leaves no output behind after errors"; fi
 
 echo
