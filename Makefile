@@ -7,6 +7,10 @@
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
+#   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
+#   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
+#   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
+#   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
@@ -52,7 +56,8 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san
+.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san \
+        setup-arm setup-gui arm qemu qemu-frames qemu-bench
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -130,9 +135,54 @@ $(eval $(call san_progs,san-float))
 $(eval $(call san_progs,san-fixed))
 
 
+# ---- ARM926 images: bare metal for qemu-system-arm -M versatilepb (platform/arm/) ---------
+# The same core, the intro compiled in, and src/intro.c (play, frames, bench) over the ARM
+# backend. Fixed: libfixmath compiled from the same fetched source; float: soft-float.
+ARM_CC := arm-none-eabi-gcc
+ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
+ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections
+ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections \
+               -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
+ARM_SRCS := $(CORE_SRCS) src/intro.c platform/arm/arm.c $(GEN)/scene_intro.c
+ARM_ELFS := $(BUILD)/arm/intro-fixed.elf $(BUILD)/arm/intro-float.elf
+
+# $(1) real (fixed or float), $(2) REAL_FIXED, $(3) libfixmath archive or empty
+define arm_variant
+ARM_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/%.o,$(ARM_SRCS)) $(BUILD)/obj/arm-$(1)/start.o
+
+$(BUILD)/obj/arm-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+
+$(BUILD)/obj/arm-$(1)/start.o: platform/arm/start.S
+	@mkdir -p $$(@D)
+	$(ARM_CC) $(ARM_ARCH) -c $$< -o $$@
+
+$(BUILD)/obj/arm-$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$(ARM_CC) -std=c11 $(OPT) $(ARM_CFLAGS) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+
+$(BUILD)/obj/arm-$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $$@ && arm-none-eabi-ar rcs $$@ $$^
+
+$(BUILD)/arm/intro-$(1).elf: $$(ARM_OBJS_$(1)) $(3) platform/arm/link.ld
+	@mkdir -p $$(@D)
+	$(ARM_CC) $(ARM_LDFLAGS) -Wl,-Map=$$@.map -o $$@ $$(ARM_OBJS_$(1)) $(3) -lm -lc -lgcc
+
+-include $$(ARM_OBJS_$(1):.o=.d)
+endef
+$(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
+$(eval $(call arm_variant,float,0,))
+
 # ---- user commands -------------------------------------------------------------------------
 setup:
 	@./setup.sh
+
+setup-arm:
+	@./setup.sh --arm
+
+setup-gui:
+	@./setup.sh --arm --gui
 
 # Stills of the intro, one per part, rendered by both builds and compared (the player is
 # issue [sdl]); then the traced points of one of them.
@@ -149,8 +199,8 @@ run: setup
 	$(BUILD)/rt-fixed render --size 640x480 --time 35 --show-samples --stats -o $(BUILD)/out/intro-35-samples.png
 	@echo "run: intro stills in $(BUILD)/out/intro-T-fixed.png and intro-T-float.png (T = $(INTRO_STILLS) s); intro-35-samples.png shows the points adaptive subsampling traced"
 
-test: setup
-	@$(MAKE) --no-print-directory all san
+test: setup-arm
+	@$(MAKE) --no-print-directory all san arm
 	@tests/run.sh
 
 bench: setup
@@ -169,9 +219,30 @@ scene-programs: setup
 	@$(MAKE) --no-print-directory all
 	@tests/scene_programs.sh --check
 
+# ---- the ARM926 board under QEMU (platform/arm/qemu.sh) -----------------------------------
+REAL ?= fixed
+FRAMES ?= 0 250 500
+QEMU_BENCH ?= 0 1200 24
+
+arm: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@tests/arm_check.sh --print
+
+qemu: setup-gui
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@platform/arm/qemu.sh play $(REAL)
+
+qemu-frames: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@platform/arm/qemu.sh frames $(REAL) $(FRAMES)
+
+qemu-bench: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@tests/qemu_bench.sh $(QEMU_BENCH)
+
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(HOST_PROGS)
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(HOST_PROGS)
 
 distclean:
 	rm -rf $(BUILD)

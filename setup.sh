@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # setup.sh: installs the Debian packages fixray needs and fetches libfixmath's source (cached in build/deps).
 #
-# Usage: ./setup.sh [--check]
+# Usage: ./setup.sh [--check] [--arm] [--gui]
+#   --arm     also the ARM926 cross toolchain and QEMU (make arm, make qemu-frames, make test)
+#   --gui     also QEMU's display window (make qemu)
 #   --check   only report what is missing (exit 1 if anything is), change nothing.
 # Safe to run again: it does nothing when everything is already there.
 set -euo pipefail
@@ -11,6 +13,9 @@ deps="$top/build/deps"
 
 # Packages for building and testing on the host.
 packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev xz-utils ca-certificates)
+# The ARM926 images and their emulator; QEMU's window.
+arm_packages=(gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm)
+gui_packages=(qemu-system-gui)
 
 # libfixmath: the Debian source package version, and the upstream tarball it ships.
 fixmath_version="0~20220222-3"
@@ -21,11 +26,14 @@ say() { printf 'setup: %s\n' "$*"; }
 die() { printf 'setup: error: %s\n' "$*" >&2; exit 1; }
 
 check_only=0
-case "${1:-}" in
-  "") ;;
-  --check) check_only=1 ;;
-  *) die "unknown option '$1' (usage: ./setup.sh [--check])" ;;
-esac
+for arg in "$@"; do
+  case "$arg" in
+    --check) check_only=1 ;;
+    --arm) packages+=("${arm_packages[@]}") ;;
+    --gui) packages+=("${arm_packages[@]}" "${gui_packages[@]}") ;;
+    *) die "unknown option '$arg' (usage: ./setup.sh [--check] [--arm] [--gui])" ;;
+  esac
+done
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then

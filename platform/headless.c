@@ -29,6 +29,10 @@ void plat_frame_release(plat_frame *f)
 int plat_frame_present(const plat_frame *f, const char *dest)
 {
     char err[512];
+    if (!dest) {
+        fprintf(stderr, "error: the headless backend has no display; give an output file\n");
+        return -1;
+    }
     if (img_save(dest, f->pixels, f->width, f->height, f->stride, err, sizeof err) != 0) {
         fprintf(stderr, "error: %s\n", err);
         return -1;
@@ -36,11 +40,16 @@ int plat_frame_present(const plat_frame *f, const char *dest)
     return 0;
 }
 
-uint64_t plat_time_us(void)
+uint64_t plat_time_ns(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+void plat_log(const char *line)
+{
+    fprintf(stderr, "%s\n", line);
 }
 
 int main(int argc, char **argv)

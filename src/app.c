@@ -305,9 +305,9 @@ static int app_render(int argc, char **argv)
 #if FX_COUNT_EVENTS
     fx_events_reset();
 #endif
-    uint64_t t0 = plat_time_us();
+    uint64_t t0 = plat_time_ns();
     rt_render(&scene, &view, &params, frame.pixels, frame.stride, &stats, work, traced);
-    uint64_t us = plat_time_us() - t0;
+    uint64_t us = (plat_time_ns() - t0) / 1000u;
     if (traced)
         for (int y = 0; y < o.height; y++)
             for (int x = 0; x < o.width; x++)

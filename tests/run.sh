@@ -336,6 +336,19 @@ expect_error 1 "cannot write" $B/rt-scenec scenes/demo.scene -o "$T/no/such/dir/
 expect_error 1 "sc.h: cannot write" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --effects "$T/no/such/dir/sc.h"
 if ls "$T"/no/such/dir/sc.c* "$T"/sc.c >/dev/null 2>&1; then fail "rt-scenec left an output behind after errors"; else pass "rt-scenec leaves no output behind after errors"; fi
 
+# ---- the ARM926 images under QEMU (tests/arm.sh, tests/arm_check.sh) ------------------------
+tests/arm.sh >"$T/arm.log" 2>&1
+arm_status=$?
+arm_failed=$failed
+while IFS= read -r line; do
+  case "$line" in
+    "ok   "*) pass "${line#ok   }" ;;
+    "FAIL "*) fail "${line#FAIL }" ;;
+    *) echo "       $line" ;;
+  esac
+done <"$T/arm.log"
+[ "$arm_status" -eq 0 ] || [ "$failed" -gt "$arm_failed" ] || fail "tests/arm.sh exited with status $arm_status"
+
 echo
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

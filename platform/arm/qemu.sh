@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# qemu.sh: runs the ARM926 intro image on qemu-system-arm -M versatilepb: play it in QEMU's window, render frames to files, or benchmark a stretch.
+#
+# Usage (from the top of the repository; make qemu, make qemu-frames and make qemu-bench call it):
+#   platform/arm/qemu.sh play   [fixed|float]                  QEMU's window, the intro looping
+#   platform/arm/qemu.sh frames [fixed|float] N...             build/qemu/<real>-NNNN.ppm
+#   platform/arm/qemu.sh bench  [fixed|float] FIRST LAST STEP  frames FIRST..LAST every STEP
+# frames and bench run headless under `-icount shift=0` (one guest instruction = 1 ns of virtual
+# time, so the counts are exact and repeatable) and print one `frame=N instructions=M` line per
+# frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use (`ram: ...`). The exit status
+# is the guest's. QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600): a hung guest
+# is an error, not a hang.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
+usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float] [ARGS...] (see the file's header)"
+
+[ $# -ge 1 ] || die "$usage"
+cmd=$1
+shift
+real=fixed
+if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ]; }; then
+  real=$1
+  shift
+fi
+elf=build/arm/intro-$real.elf
+[ -f "$elf" ] || die "$elf is missing: run make arm first"
+command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
+timeout_s=${QEMU_TIMEOUT:-600}
+case "$timeout_s" in ''|*[!0-9]*) die "QEMU_TIMEOUT must be a whole number of seconds, not '$timeout_s'" ;; esac
+
+for a in "$@"; do
+  case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
+done
+# The guest's argument list goes through semihosting: arg=intro,arg=CMD,arg=...
+semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
+common=(-M versatilepb -m 2 -serial stdio -monitor none
+        -audiodev none,id=snd0 -global pl041.audiodev=snd0 -kernel "$elf")
+
+case "$cmd" in
+  play)
+    [ $# -eq 0 ] || die "play takes no frame arguments"
+    if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+      die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-frames renders frames to files instead"
+    fi
+    echo "qemu: playing the $real intro at 320x240 on the emulated PL110; close the window or press Ctrl-C in this terminal to stop"
+    exec qemu-system-arm "${common[@]}" -semihosting-config "$(semihosting play)"
+    ;;
+  frames)
+    [ $# -ge 1 ] || die "frames wants at least one frame number"
+    mkdir -p build/qemu
+    for n in "$@"; do
+      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
+      rm -f "build/qemu/$real-$(printf '%04d' "$((10#$n))").ppm"
+    done
+    set -- --out "build/qemu/$real" "$@"
+    ;;
+  bench)
+    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    ;;
+  *) die "unknown command '$cmd'; $usage" ;;
+esac
+
+status=0
+timeout "$timeout_s" qemu-system-arm "${common[@]}" -display none \
+  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "$@")" ||
+  status=$?
+if [ "$status" -eq 124 ]; then
+  echo "qemu.sh: error: the $real guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
+  exit 1
+fi
+exit "$status"

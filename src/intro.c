@@ -1,0 +1,285 @@
+/* intro.c: the intro as a board without files or a shell runs it (the ARM image): play it, render listed frames, or benchmark a stretch.
+ *
+ * Commands, from the platform's argument list (on the ARM board: QEMU's semihosting
+ * `arg=` values, the first being the program name):
+ *   play                     loop the intro in real time on the display (the default)
+ *   frames [--out P] N...    render intro frames N (at the scene's fps) at 320x240, show each
+ *                            and save it as P-NNNN.ppm; log `frame=N instructions=M`
+ *   bench FIRST LAST STEP    render frames FIRST, FIRST+STEP, ... <= LAST without saving them;
+ *                            log `frame=N instructions=M` for each, then the mean and worst
+ *   show N                   render frame N, show it, log `shown frame=N` and keep it on the
+ *                            display until stopped (lets a test grab the display)
+ * `instructions` is the platform clock in nanoseconds across rt_render: under QEMU with
+ * `-icount shift=0` a guest instruction advances that clock by exactly 1 ns.
+ * Settings are the defaults of `render` (adaptive, grid 8, the scene's depth), so frames are
+ * byte for byte those of `build/rt-fixed render --size 320x240 --frame N`.
+ * Nothing here allocates: the scene and the adaptive mode's working storage are static.
+ */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "platform.h"
+#include "rt.h"
+#include "scn.h"
+
+/* The intro, scenes/intro.scene compiled in at build time (rt-scenec). */
+extern const scn_desc scn_intro;
+
+#define INTRO_W 320
+#define INTRO_H 240
+
+/* Working storage of the adaptive mode at INTRO_W with the default grid: two rows of corners
+ * and one square's samples (see rt_render_work_size). */
+#define INTRO_WORK_SAMPLES                                                                       \
+    (2 * (INTRO_W / RT_DEFAULT_GRID + 2) + (RT_DEFAULT_GRID + 1) * (RT_DEFAULT_GRID + 1))
+static rt_sample intro_work[INTRO_WORK_SAMPLES];
+static rt_scene intro_scene;
+
+/* A line of log text under construction. */
+typedef struct intro_line {
+    char s[120];
+    int n;
+} intro_line;
+
+static void intro_str(intro_line *l, const char *s)
+{
+    while (*s && l->n < (int)sizeof l->s - 1)
+        l->s[l->n++] = *s++;
+    l->s[l->n] = '\0';
+}
+
+static void intro_num(intro_line *l, uint64_t v)
+{
+    char d[24];
+    int k = 0;
+    do {
+        d[k++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    while (k && l->n < (int)sizeof l->s - 1)
+        l->s[l->n++] = d[--k];
+    l->s[l->n] = '\0';
+}
+
+/* Logs "prefix" followed by "name=value" pairs. */
+static void intro_log2(const char *a, uint64_t va, const char *b, uint64_t vb)
+{
+    intro_line l = {.n = 0};
+    intro_str(&l, a);
+    intro_num(&l, va);
+    if (b) {
+        intro_str(&l, b);
+        intro_num(&l, vb);
+    }
+    plat_log(l.s);
+}
+
+/* A whole number in [0, max], or -1. */
+static long intro_arg(const char *s, long max)
+{
+    long v = 0;
+    if (!*s)
+        return -1;
+    for (; *s; s++) {
+        if (*s < '0' || *s > '9' || v > (max - (*s - '0')) / 10)
+            return -1;
+        v = v * 10 + (*s - '0');
+    }
+    return v;
+}
+
+static int intro_streq(const char *a, const char *b)
+{
+    while (*a && *a == *b)
+        a++, b++;
+    return *a == *b;
+}
+
+static long intro_last_frame(void)
+{
+    return (long)scn_intro.duration_ms * scn_intro.fps / 1000;
+}
+
+/* Renders the intro at time ms into frame f; returns the platform nanoseconds it took. */
+static uint64_t intro_render(const plat_frame *f, int32_t ms)
+{
+    scn_eval(&scn_intro, ms, &intro_scene);
+    rt_params p = {.depth = intro_scene.depth, .min_contrib = RT_DEFAULT_MIN_CONTRIB,
+                   .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID,
+                   .threshold = RT_DEFAULT_THRESHOLD};
+    rt_view v;
+    rt_view_init(&v, &intro_scene.camera, f->width, f->height);
+    rt_stats stats = {0};
+    uint64_t t0 = plat_time_ns();
+    rt_render(&intro_scene, &v, &p, f->pixels, f->stride, &stats, intro_work, NULL);
+    return plat_time_ns() - t0;
+}
+
+static int32_t intro_frame_ms(long frame)
+{
+    return (int32_t)(frame * 1000 / scn_intro.fps);
+}
+
+/* play: the timeline follows the clock; a slow frame skips ahead rather than slowing down. */
+static int intro_play(void)
+{
+    uint64_t start = plat_time_ns(), shown = 0, t_fps = start;
+    plat_log("intro: playing at 320x240, looping");
+    for (;;) {
+        plat_frame f;
+        if (plat_frame_acquire(&f, INTRO_W, INTRO_H) != 0)
+            return 1;
+        uint64_t now = plat_time_ns();
+        int32_t ms = (int32_t)((now - start) / 1000000u % (uint64_t)scn_intro.duration_ms);
+        intro_render(&f, ms);
+        plat_frame_present(&f, NULL);
+        plat_frame_release(&f);
+        shown++;
+        now = plat_time_ns();
+        if (now - t_fps >= 5000000000u) { /* every 5 s of the board's clock */
+            uint64_t fps100 = shown * 100000000000u / (now - t_fps);
+            intro_line l = {.n = 0};
+            intro_str(&l, "intro: t=");
+            intro_num(&l, (uint64_t)ms / 1000);
+            intro_str(&l, " s, fps=");
+            intro_num(&l, fps100 / 100);
+            intro_str(&l, fps100 % 100 < 10 ? ".0" : ".");
+            intro_num(&l, fps100 % 100);
+            plat_log(l.s);
+            shown = 0;
+            t_fps = now;
+        }
+    }
+}
+
+/* Saves frame f as PREFIX-NNNN.ppm. */
+static int intro_save(const plat_frame *f, const char *prefix, long frame)
+{
+    intro_line path = {.n = 0};
+    intro_str(&path, prefix);
+    intro_str(&path, "-");
+    for (long d = 1000; d > 1 && frame < d; d /= 10)
+        intro_str(&path, "0");
+    intro_num(&path, (uint64_t)frame);
+    intro_str(&path, ".ppm");
+    return plat_frame_present(f, path.s);
+}
+
+/* Renders frame k and logs its instruction count; saves it as PREFIX-NNNN.ppm when prefix is
+ * not NULL, else shows it. Adds the count to *sum and *worst. Returns 0 or 1. */
+static int intro_one(long k, const char *prefix, uint64_t *sum, uint64_t *worst)
+{
+    plat_frame f;
+    if (plat_frame_acquire(&f, INTRO_W, INTRO_H) != 0)
+        return 1;
+    uint64_t ns = intro_render(&f, intro_frame_ms(k));
+    intro_log2("frame=", (uint64_t)k, " instructions=", ns);
+    int rc = prefix ? intro_save(&f, prefix, k) : plat_frame_present(&f, NULL);
+    plat_frame_release(&f);
+    *sum += ns;
+    *worst = ns > *worst ? ns : *worst;
+    return rc == 0 ? 0 : 1;
+}
+
+static int intro_summary(uint64_t n, uint64_t sum, uint64_t worst)
+{
+    intro_log2("frames=", n, " mean=", sum / n);
+    intro_log2("worst=", worst, NULL, 0);
+    return 0;
+}
+
+/* frames [--out PREFIX] N...: checks every number before rendering any frame. */
+static int intro_frames(int argc, char **argv)
+{
+    const char *prefix = "intro";
+    long last = intro_last_frame();
+    int n = 0;
+    for (int i = 0; i < argc; i++) {
+        if (intro_streq(argv[i], "--out")) {
+            if (++i == argc) {
+                plat_log("intro: error: --out wants a path prefix");
+                return 2;
+            }
+            prefix = argv[i];
+        } else if (intro_arg(argv[i], last) < 0) {
+            intro_log2("intro: error: frame numbers are whole numbers 0..", (uint64_t)last,
+                       NULL, 0);
+            return 2;
+        } else {
+            n++;
+        }
+    }
+    if (n == 0) {
+        plat_log("intro: error: frames wants at least one frame number");
+        return 2;
+    }
+    uint64_t sum = 0, worst = 0;
+    for (int i = 0; i < argc; i++) {
+        if (intro_streq(argv[i], "--out"))
+            i++;
+        else if (intro_one(intro_arg(argv[i], last), prefix, &sum, &worst) != 0)
+            return 1;
+    }
+    return intro_summary((uint64_t)n, sum, worst);
+}
+
+/* bench FIRST LAST STEP */
+static int intro_bench(int argc, char **argv)
+{
+    long last = intro_last_frame();
+    long a = argc == 3 ? intro_arg(argv[0], last) : -1;
+    long b = argc == 3 ? intro_arg(argv[1], last) : -1;
+    long step = argc == 3 ? intro_arg(argv[2], last) : -1;
+    if (a < 0 || b < a || step < 1) {
+        intro_log2("intro: error: bench wants FIRST LAST STEP, FIRST <= LAST in 0..",
+                   (uint64_t)last, NULL, 0);
+        return 2;
+    }
+    uint64_t sum = 0, worst = 0, n = 0;
+    for (long k = a; k <= b; k += step, n++)
+        if (intro_one(k, NULL, &sum, &worst) != 0)
+            return 1;
+    return intro_summary(n, sum, worst);
+}
+
+/* show N */
+static int intro_show(int argc, char **argv)
+{
+    long k = argc == 1 ? intro_arg(argv[0], intro_last_frame()) : -1;
+    if (k < 0) {
+        intro_log2("intro: error: show wants one frame number in 0..", (uint64_t)intro_last_frame(),
+                   NULL, 0);
+        return 2;
+    }
+    uint64_t sum = 0, worst = 0;
+    if (intro_one(k, NULL, &sum, &worst) != 0)
+        return 1;
+    intro_log2("shown frame=", (uint64_t)k, NULL, 0);
+    for (;;)
+        plat_time_ns(); /* the board has nothing else to do */
+}
+
+int app_main(int argc, char **argv)
+{
+    if (rt_render_work_size(&(rt_params){.mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID},
+                            INTRO_W) > sizeof intro_work) {
+        plat_log("intro: error: working storage too small");
+        return 1;
+    }
+    if (argc < 2 || intro_streq(argv[1], "play")) {
+        if (argc > 2) {
+            plat_log("intro: error: play takes no arguments");
+            return 2;
+        }
+        return intro_play();
+    }
+    if (intro_streq(argv[1], "frames"))
+        return intro_frames(argc - 2, argv + 2);
+    if (intro_streq(argv[1], "bench"))
+        return intro_bench(argc - 2, argv + 2);
+    if (intro_streq(argv[1], "show"))
+        return intro_show(argc - 2, argv + 2);
+    plat_log("intro: error: unknown command (commands: play, frames [--out PREFIX] N..., "
+             "bench FIRST LAST STEP, show N)");
+    return 2;
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# arm.sh: the ARM926 images under QEMU against the host builds: bit-identical fixed frames, close soft-float frames, repeatable instruction counts, RAM, display.
+#
+# Expects make all arm. Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them) and exits 1
+# if any check fails. Frames are those of platform/arm/qemu.sh frames, in build/qemu/.
+set -u
+cd "$(dirname "$0")/.."
+
+B=build
+T=$B/test/arm
+rm -rf "$T" && mkdir -p "$T"
+RAM_LIMIT=32768
+# Intro frames across its five parts (25 fps): t = 0, 8, 17, 25, 35, 44 and 48 s.
+FRAMES=(0 200 425 625 875 1100 1200)
+status=0
+pass() { echo "ok   $*"; }
+fail() { echo "FAIL $*"; status=1; }
+
+ppm() { printf '%s/qemu/%s-%04d.ppm' "$B" "$1" "$2"; }
+
+# The budgets that need no run.
+tests/arm_check.sh || status=1
+
+for real in fixed float; do
+  for n in "${FRAMES[@]}"; do
+    "$B/rt-$real" render --size 320x240 --frame "$n" -o "$T/host-$real-$n.ppm" 2>/dev/null ||
+      fail "arm: host $real render of frame $n"
+  done
+done
+
+# Fixed: two runs; the frames equal the host's byte for byte, the counts equal each other.
+for run in 1 2; do
+  if platform/arm/qemu.sh frames fixed "${FRAMES[@]}" >"$T/fixed-$run.log" 2>&1; then
+    pass "arm: qemu-frames fixed, run $run ($(grep -c '^frame=' "$T/fixed-$run.log") frames, mean $(sed -n 's/.* mean=//p' "$T/fixed-$run.log") instructions)"
+  else
+    fail "arm: qemu-frames fixed, run $run: $(tail -2 "$T/fixed-$run.log" | tr '\n' ' ')"
+  fi
+  for n in "${FRAMES[@]}"; do
+    cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" || fail "arm: fixed frame $n (run $run) differs from build/rt-fixed render --size 320x240 --frame $n"
+  done
+done
+same=0
+for n in "${FRAMES[@]}"; do
+  cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" && same=$((same + 1))
+done
+[ "$same" -eq ${#FRAMES[@]} ] && pass "arm: fixed frames ${FRAMES[*]} bit-identical to the host's rt-fixed, in both runs"
+if [ -s "$T/fixed-1.log" ] && diff <(grep '^frame=' "$T/fixed-1.log") <(grep '^frame=' "$T/fixed-2.log") >/dev/null; then
+  pass "arm: two runs give identical instruction counts ($(grep '^frame=' "$T/fixed-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
+else
+  fail "arm: instruction counts differ between two runs"
+fi
+
+# Soft-float: the same sources in float, against the host's float build.
+if platform/arm/qemu.sh frames float "${FRAMES[@]}" >"$T/float.log" 2>&1; then
+  pass "arm: qemu-frames float ($(grep -c '^frame=' "$T/float.log") frames, mean $(sed -n 's/.* mean=//p' "$T/float.log") instructions)"
+else
+  fail "arm: qemu-frames float: $(tail -2 "$T/float.log" | tr '\n' ' ')"
+fi
+for n in "${FRAMES[@]}"; do
+  line=$($B/rt-cmp "$(ppm float "$n")" "$T/host-float-$n.ppm" 2>&1)
+  psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
+  if [ -n "$psnr" ] && { [ "$psnr" = inf ] || awk -v p="$psnr" 'BEGIN { exit !(p >= 40) }'; }; then
+    pass "arm: soft-float frame $n vs host float: $line"
+  else
+    fail "arm: soft-float frame $n vs host float (want psnr >= 40): $line"
+  fi
+done
+
+# RAM: .data + .bss + the deepest stack use, over a stretch of the whole intro.
+if platform/arm/qemu.sh bench fixed 0 1200 50 >"$T/bench.log" 2>&1; then
+  ram=$(sed -n 's/^ram: .* total=\([0-9]*\) bytes$/\1/p' "$T/bench.log")
+  if [ -n "$ram" ] && [ "$ram" -le "$RAM_LIMIT" ]; then
+    pass "arm: RAM besides the framebuffers, 25 intro frames: $(grep '^ram:' "$T/bench.log" | sed 's/^ram: //') <= $RAM_LIMIT"
+  else
+    fail "arm: RAM: $(grep '^ram:' "$T/bench.log") (limit $RAM_LIMIT)"
+  fi
+else
+  fail "arm: bench fixed 0 1200 50: $(tail -2 "$T/bench.log" | tr '\n' ' ')"
+fi
+
+# The display: the PL110 shows a frame exactly as rendered (QEMU's screendump through the monitor).
+n=875
+rm -f "$T/serial.log" "$T/screen.ppm"
+{
+  for _ in $(seq 300); do grep -q '^shown' "$T/serial.log" 2>/dev/null && break; sleep 0.1; done
+  echo "screendump $T/screen.ppm"
+  sleep 1
+  echo quit
+} | timeout 60 qemu-system-arm -M versatilepb -m 2 -display none -monitor stdio -serial "file:$T/serial.log" \
+      -audiodev none,id=snd0 -global pl041.audiodev=snd0 \
+      -semihosting-config enable=on,target=native,arg=intro,arg=show,arg=$n \
+      -kernel "$B/arm/intro-fixed.elf" >"$T/monitor.log" 2>&1
+if [ -f "$T/screen.ppm" ] && cmp -s "$T/screen.ppm" "$T/host-fixed-$n.ppm"; then
+  pass "arm: the PL110 framebuffer shows frame $n exactly as rt-fixed renders it (screendump)"
+else
+  fail "arm: screendump of frame $n on the PL110: $($B/rt-cmp "$T/screen.ppm" "$T/host-fixed-$n.ppm" 2>&1)"
+fi
+exit $status
