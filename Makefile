@@ -215,9 +215,9 @@ bench-effects: setup
 	@$(MAKE) --no-print-directory all
 	@tests/bench_effects.sh
 
-scene-programs: setup
-	@$(MAKE) --no-print-directory all
-	@tests/scene_programs.sh --check
+scene-programs: setup-arm
+	@$(MAKE) --no-print-directory all arm
+	@tests/scene_programs.sh --check --arm
 
 # ---- the ARM926 board under QEMU (platform/arm/qemu.sh) -----------------------------------
 REAL ?= fixed

@@ -253,7 +253,7 @@ for scene in scenes/*.scene; do
 done
 # A scene compiled into its own program (rt-scenec, only the scene's effects linked) renders
 # exactly what render --scene renders.
-if tests/scene_programs.sh --check >"$T/programs.log" 2>&1; then
+if tests/scene_programs.sh --check --arm >"$T/programs.log" 2>&1; then
   pass "every scene compiled into its own program renders the same bytes as render --scene"
 else
   fail "compiled scene programs (see below)"

@@ -1,15 +1,26 @@
 #!/usr/bin/env bash
 # scene_programs.sh: compiles every scene into its own program (rt-scenec + the tracer built with
 # only the scene's effects), prints the code size of each, and checks that each renders exactly
-# what `rt-fixed render --scene` renders. Usage: tests/scene_programs.sh [--check] [SCENE...]
+# what `rt-fixed render --scene` renders. Usage: tests/scene_programs.sh [--check] [--arm] [SCENE...]
 # Expects `make all`. With --check, exits non-zero when a compiled scene's frame differs.
+# With --arm (expects `make arm`), also links the fixed ARM926 image (src/intro.c) around each
+# scene and prints its code + read-only data + initialised data, the figure the 64 kB limit
+# applies to.
 set -u
 cd "$(dirname "$0")/.."
 B=build
 OUT=$B/scenes
 mkdir -p "$OUT"
 check=0
-if [ "${1:-}" = --check ]; then check=1; shift; fi
+arm=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --check) check=1 ;;
+    --arm) arm=1 ;;
+    *) break ;;
+  esac
+  shift
+done
 scenes=("$@")
 [ ${#scenes[@]} -gt 0 ] || scenes=(scenes/*.scene)
 
@@ -35,11 +46,35 @@ build() {
   $CC -O2 -Wl,--gc-sections -o "$1" "${objs[@]}" "$1.obj/compiled.o" "$1.obj/still.o" "$LIB" -lm
 }
 
+# The fixed ARM image $1 around generated scene source $2 (named scn_intro) and effects header
+# $3: the core compiled for the ARM926 with the scene's effects; intro.c, the backend and
+# libfixmath as `make arm` built them.
+ARM_CC=arm-none-eabi-gcc
+ARM_ARCH="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
+AO=$B/obj/arm-fixed
+build_arm() {
+  local objs=() f o
+  mkdir -p "$1.obj"
+  for f in $CORE "$2"; do
+    o="$1.obj/arm-$(basename "${f%.c}").o"
+    $ARM_CC ${CFLAGS/-mgeneral-regs-only/} $ARM_ARCH -ffreestanding $INC -Iplatform -include "$3" -c "$f" -o "$o" || return 1
+    objs+=("$o")
+  done
+  $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/platform/arm/arm.o" \
+    "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
+}
+arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }
+
 # Bytes of code (.text) of the tracer, libfixmath and the scene data in a program.
 text_size() { size -A "$1" | awk '$1 == ".text" { t = $2 } $1 == ".rodata" { r = $2 } END { print t, r }'; }
 
 bad=0
-printf '%-24s %-44s %10s %10s %10s\n' scene effects text rodata "text vs all"
+if [ $arm = 1 ]; then
+  printf '%-24s %-44s %10s %10s %12s %10s\n' scene effects text rodata "text vs all" "ARM image"
+else
+  printf '%-24s %-44s %10s %10s %12s\n' scene effects text rodata "text vs all"
+fi
 for scene in "${scenes[@]}"; do
   name=$(basename "${scene%.scene}")
   gen=$OUT/$name
@@ -53,7 +88,17 @@ for scene in "${scenes[@]}"; do
   read -r t r < <(text_size "$gen-fixed")
   read -r ta _ < <(text_size "$gen-all")
   fx=$(sed -n 's|.*RT_COMPILED_EFFECTS [0-9]*u /\*\(.*\) \*/|\1|p' "$gen-fx.h")
-  printf '%-24s %-44s %10d %10d %9d%%\n' "$name" "${fx:- none}" "$t" "$r" $((t * 100 / ta))
+  printf '%-24s %-44s %10d %10d %11d%%' "$name" "${fx:- none}" "$t" "$r" $((t * 100 / ta))
+  if [ $arm = 1 ]; then
+    if $B/rt-scenec "$scene" -o "$gen-intro.c" --name scn_intro 2>>"$gen.log" &&
+      build_arm "$gen-arm.elf" "$gen-intro.c" "$gen-fx.h"; then
+      printf ' %10d' "$(arm_size "$gen-arm.elf")"
+    else
+      printf ' %10s' failed
+      bad=1
+    fi
+  fi
+  echo
   if [ $check = 1 ]; then
     # the compiled program's frame equals the file's, byte for byte, at three moments
     dur=$(sed -n 's/^ *\.duration_ms = \([0-9]*\),.*/\1/p' "$gen.c")
@@ -69,4 +114,5 @@ for scene in "${scenes[@]}"; do
   fi
 done
 echo "(x86-64 host, -O2, unused sections dropped; 'text vs all' compares with the same program built with every effect)"
+[ $arm = 0 ] || echo "(ARM image: build/arm/intro-fixed.elf with the scene in place of the intro: code + rodata + data bytes)"
 exit $bad
