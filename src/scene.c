@@ -113,8 +113,12 @@ void rt_scene_prepare(rt_scene *s)
         if (o->kind == RT_SPHERE) {
             o->radius2 = w_sq(o->radius);
         } else {
-            /* A plane is given by any normal vector and the offset along the unit normal. */
-            o->normal = d3_norm(o->axis, 0);
+            /* A plane is given by any normal vector and the offset along the unit normal. A
+             * normal animated through zero has no direction at that instant: the plane is
+             * then no plane at all, and a zero normal makes every ray miss it (parallel). */
+            o->normal = (dir3){0, 0, 0};
+            if (!v3_is_zero(o->axis))
+                o->normal = d3_norm(o->axis, 0);
         }
     }
     for (int i = 0; i < s->nmaterials; i++) {
@@ -129,10 +133,17 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->eye = cam->eye;
     v->width = width;
     v->height = height;
-    v->fwd = d3_norm(v3_sub(cam->at, cam->eye), 0);
-    real sin_up;
-    v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
-    if (sin_up < R(0.001)) {
+    /* Keys keep eye and at apart and up non-zero, but animated tracks can cross between keys:
+     * for that instant the camera looks down -z, and a zero up is parallel to anything. */
+    vec3 view = v3_sub(cam->at, cam->eye);
+    v->fwd = (dir3){0, 0, u_neg(U_ONE)};
+    if (!v3_is_zero(view))
+        v->fwd = d3_norm(view, 0);
+    real sin_up = 0;
+    if (!v3_is_zero(cam->up))
+        v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
+    /* 2^-10, exact in both builds, so that both take the same branch */
+    if (sin_up < R(0.0009765625)) {
         /* The up vector is (nearly) parallel to the view: any other axis will do. */
         dir3 alt = {0, 0, U_ONE};
         if (v->fwd.z > U(0.5) || v->fwd.z < U(-0.5))
