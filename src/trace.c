@@ -103,8 +103,22 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 occ &= ~((uint32_t)1 << id);
             int blocked = 0;
             if (occ) {
+                /* Aimed from p_out itself, so that the segment ends at the light. Along l from
+                 * p_out it would end R_EPS_OFFSET beyond the light along n: behind a surface
+                 * the light is closer to than that (a light just above a floor seen from the
+                 * underside of a ball: a false shadow). */
+                vec3 to_light_out = v3_sub(li->pos, p_out);
+                real sdist = 0;
+                dir3 sl = l;
+                if (!v3_is_zero(to_light_out))
+                    sl = d3_norm(to_light_out, &sdist);
+                /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+                 * off the surface: a surface through the light itself (a light in a corner of
+                 * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
-                blocked = trace_occluded(s, c->stats, occ, p_out, l, dist);
+                if (sdist > R_EPS_OFFSET)
+                    blocked = trace_occluded(s, c->stats, occ, p_out, sl,
+                                             r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
                 state = 1;
