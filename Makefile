@@ -11,6 +11,8 @@
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
+#   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
+#                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
@@ -44,7 +46,7 @@ CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/su
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
 APP_SRCS := src/app.c src/scn_parse.c src/image.c platform/headless.c $(GEN)/scene_intro.c
-TESTS := test_numeric test_shapes test_noise test_subsample test_scene
+TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
 
 # On x86-64 the fixed core is compiled without access to floating-point registers: any float
@@ -56,7 +58,7 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san \
+.PHONY: all run test bench bench-subsample bench-effects scene-programs stress clean distclean setup san \
         setup-arm setup-gui arm qemu qemu-frames qemu-bench
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -133,6 +135,12 @@ $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scn
 endef
 $(eval $(call san_progs,san-float))
 $(eval $(call san_progs,san-fixed))
+
+# The randomised property test at -O2, for long runs (make stress).
+$(BUILD)/stress-float: $(BUILD)/obj/float/tests/test_stability.o $(CORE_OBJS_float)
+	$(CC) $(OPT) -o $@ $^ -lcmocka -lm
+$(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fixed) $(FIXMATH_LIB_fixed)
+	$(CC) $(OPT) -o $@ $^ -lcmocka -lm
 
 
 # ---- ARM926 images: bare metal for qemu-system-arm -M versatilepb (platform/arm/) ---------
@@ -215,6 +223,12 @@ bench-effects: setup
 	@$(MAKE) --no-print-directory all
 	@tests/bench_effects.sh
 
+STRESS_RAYS ?= 20000000
+stress: setup
+	@$(MAKE) --no-print-directory $(BUILD)/stress-fixed $(BUILD)/stress-float
+	$(BUILD)/stress-fixed $(STRESS_RAYS)
+	$(BUILD)/stress-float $(STRESS_RAYS)
+
 scene-programs: setup-arm
 	@$(MAKE) --no-print-directory all arm
 	@tests/scene_programs.sh --check --arm
@@ -242,7 +256,8 @@ qemu-bench: setup-arm
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(HOST_PROGS)
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/stress-fixed \
+	       $(BUILD)/stress-float $(HOST_PROGS)
 
 distclean:
 	rm -rf $(BUILD)

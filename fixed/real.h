@@ -18,7 +18,8 @@
  * Fixed-point arithmetic never wraps: a result out of range saturates to +-R_MAX, and a
  * domain error (square root of a negative, division by zero, normalising a zero vector)
  * returns a defined value. With FX_COUNT_EVENTS=1 each such event is counted in
- * fx_event_count[] so that tests can assert none happened.
+ * fx_event_count[] so that tests can assert none happened; the float build then also counts
+ * every NaN or infinity an operation returns (FX_EV_NONFINITE).
  */
 #ifndef FIXRAY_REAL_H
 #define FIXRAY_REAL_H
@@ -35,8 +36,9 @@
 #error "REAL_FIXED must be 0 (float) or 1 (fixed point)"
 #endif
 
-/* Kinds of numeric events (only counted when FX_COUNT_EVENTS=1). */
-enum { FX_EV_OVERFLOW, FX_EV_DOMAIN, FX_EV_COUNT };
+/* Kinds of numeric events (only counted when FX_COUNT_EVENTS=1): saturation, domain errors,
+ * and in the float build any operation that produced a NaN or an infinity. */
+enum { FX_EV_OVERFLOW, FX_EV_DOMAIN, FX_EV_NONFINITE, FX_EV_COUNT };
 #if FX_COUNT_EVENTS
 extern unsigned long fx_event_count[FX_EV_COUNT];
 /* Resets the event counters to zero. */
@@ -126,6 +128,12 @@ static inline vec3 v3_along(vec3 o, dir3 d, real t)
 static inline int v3_within(vec3 p, real lim)
 {
     return p.x <= lim && p.x >= -lim && p.y <= lim && p.y >= -lim && p.z <= lim && p.z >= -lim;
+}
+
+/* Is v the zero vector (which has no direction: test before d3_norm)? */
+static inline int v3_is_zero(vec3 v)
+{
+    return v.x == 0 && v.y == 0 && v.z == 0;
 }
 
 static inline dir3 d3_neg(dir3 d)

@@ -354,15 +354,23 @@ static inline dir3 d3_norm(vec3 v, real *len)
 }
 
 /* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
- * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 so
- * that any field of view with step*|ia| and step*|ib| below 8 fits. */
+ * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 when
+ * step*|ia| and step*|ib| are below 8 (any field of view on frames up to 4:1); a wider image
+ * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
+ * so that every term stays below 2^61 and the sums below 2^63. */
 static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)
 {
-    int64_t a = ((int64_t)step * ia) >> 2, b = ((int64_t)step * ib) >> 2;
-    int64_t x = (int64_t)f.x * (1 << 28) + r.x * a + u.x * b;
-    int64_t y = (int64_t)f.y * (1 << 28) + r.y * a + u.y * b;
-    int64_t z = (int64_t)f.z * (1 << 28) + r.z * a + u.z * b;
-    return fx_norm64(x, y, z, 58, 0);
+    int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
+    uint64_t big = (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
+    int sh = 2;
+    while (big >> (31 + sh))
+        sh++;
+    a >>= sh;
+    b >>= sh;
+    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + r.x * a + u.x * b;
+    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + r.y * a + u.y * b;
+    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + r.z * a + u.z * b;
+    return fx_norm64(x, y, z, 60 - sh, 0);
 }
 
 /* Unit vector along a x b; *len (may be NULL) gets |a x b| = sin of the angle. */

@@ -20,6 +20,19 @@
 #define R_LSB 1.1920929e-7f
 #define U_LSB 1.1920929e-7f
 
+/* With event counting (the test builds), every result is checked: a NaN or an infinity is
+ * counted as FX_EV_NONFINITE where it is produced. Without it the check compiles to nothing. */
+#if FX_COUNT_EVENTS
+static inline float fl_chk(float x)
+{
+    if (!isfinite(x))
+        FX_EVENT(FX_EV_NONFINITE);
+    return x;
+}
+#else
+#define fl_chk(x) (x)
+#endif
+
 /* ---- real -------------------------------------------------------------------------------- */
 
 static inline real r_from_int(int32_t i)
@@ -40,17 +53,17 @@ static inline int32_t r_to_int(real a)
 
 static inline real r_from_ratio(int32_t num, int32_t den)
 {
-    return (real)num / (real)den;
+    return fl_chk((real)num / (real)den);
 }
 
 static inline real r_add(real a, real b)
 {
-    return a + b;
+    return fl_chk(a + b);
 }
 
 static inline real r_sub(real a, real b)
 {
-    return a - b;
+    return fl_chk(a - b);
 }
 
 static inline real r_neg(real a)
@@ -65,7 +78,7 @@ static inline real r_abs(real a)
 
 static inline real r_mul(real a, real b)
 {
-    return a * b;
+    return fl_chk(a * b);
 }
 
 static inline real r_shr(real a, int n)
@@ -75,7 +88,7 @@ static inline real r_shr(real a, int n)
 
 static inline real r_muli(real a, int32_t i)
 {
-    return a * (real)i;
+    return fl_chk(a * (real)i);
 }
 
 static inline real r_div(real a, real b)
@@ -84,7 +97,7 @@ static inline real r_div(real a, real b)
         FX_EVENT(FX_EV_DOMAIN);
         return a == 0.0f ? 0.0f : (a < 0.0f ? -R_MAX : R_MAX);
     }
-    return a / b;
+    return fl_chk(a / b);
 }
 
 static inline real r_sqrt(real a)
@@ -93,17 +106,17 @@ static inline real r_sqrt(real a)
         FX_EVENT(FX_EV_DOMAIN);
         return 0.0f;
     }
-    return sqrtf(a);
+    return fl_chk(sqrtf(a));
 }
 
 static inline real r_sin(real a)
 {
-    return sinf(a);
+    return fl_chk(sinf(a));
 }
 
 static inline real r_cos(real a)
 {
-    return cosf(a);
+    return fl_chk(cosf(a));
 }
 
 static inline real r_floor_split(real x, int32_t *i)
@@ -121,7 +134,7 @@ static inline real r_mod(real x, real m)
 
 static inline real r_mul_u(real a, unit u)
 {
-    return a * u;
+    return fl_chk(a * u);
 }
 
 static inline real r_div_u(real a, unit b)
@@ -133,7 +146,7 @@ static inline real r_div_u(real a, unit b)
 
 static inline unit u_mul(unit a, unit b)
 {
-    return a * b;
+    return fl_chk(a * b);
 }
 
 static inline unit u_neg(unit a)
@@ -143,12 +156,12 @@ static inline unit u_neg(unit a)
 
 static inline unit u_add(unit a, unit b)
 {
-    return a + b;
+    return fl_chk(a + b);
 }
 
 static inline unit u_muli(unit a, int32_t i)
 {
-    return a * (unit)i;
+    return fl_chk(a * (unit)i);
 }
 
 static inline unit u_from_real(real a)
@@ -180,7 +193,7 @@ static inline void u_sincos_deg(real deg, unit *s, unit *c)
 
 static inline uint8_t r_to_byte(real c)
 {
-    if (c <= 0.0f)
+    if (fl_chk(c) <= 0.0f)
         return 0;
     if (c >= 1.0f)
         return 255;
@@ -191,7 +204,7 @@ static inline uint8_t r_to_byte(real c)
 
 static inline wide w_sq(real a)
 {
-    return a * a;
+    return fl_chk(a * a);
 }
 
 static inline wide w_add(wide a, wide b)
@@ -206,7 +219,7 @@ static inline wide w_sub(wide a, wide b)
 
 static inline wide w_len2(vec3 a)
 {
-    return a.x * a.x + a.y * a.y + a.z * a.z;
+    return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z);
 }
 
 static inline real r_sqrt_w(wide a)
@@ -216,19 +229,19 @@ static inline real r_sqrt_w(wide a)
 
 static inline real r_hypot(real a, real b)
 {
-    return sqrtf(a * a + b * b);
+    return fl_chk(sqrtf(a * a + b * b));
 }
 
 /* ---- vectors ----------------------------------------------------------------------------- */
 
 static inline real v3_dot_d(vec3 v, dir3 d)
 {
-    return v.x * d.x + v.y * d.y + v.z * d.z;
+    return fl_chk(v.x * d.x + v.y * d.y + v.z * d.z);
 }
 
 static inline unit d3_dot(dir3 a, dir3 b)
 {
-    return a.x * b.x + a.y * b.y + a.z * b.z;
+    return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z);
 }
 
 static inline vec3 d3_scale(dir3 d, real s)
@@ -239,7 +252,7 @@ static inline vec3 d3_scale(dir3 d, real s)
 
 static inline dir3 fl_norm(float x, float y, float z, real *len)
 {
-    float l = sqrtf(x * x + y * y + z * z);
+    float l = fl_chk(sqrtf(x * x + y * y + z * z));
     dir3 d = {0.0f, 0.0f, 0.0f};
     if (len)
         *len = l;
@@ -247,7 +260,7 @@ static inline dir3 fl_norm(float x, float y, float z, real *len)
         FX_EVENT(FX_EV_DOMAIN);
         return d;
     }
-    float inv = 1.0f / l;
+    float inv = fl_chk(1.0f / l);
     d.x = x * inv;
     d.y = y * inv;
     d.z = z * inv;

@@ -356,8 +356,9 @@ static int app_render(int argc, char **argv)
             printf("work_bytes=%lu\n", work_bytes);
         }
 #if FX_COUNT_EVENTS
-        printf("fx_overflow=%lu\nfx_domain=%lu\n", fx_event_count[FX_EV_OVERFLOW],
-               fx_event_count[FX_EV_DOMAIN]);
+        printf("fx_overflow=%lu\nfx_domain=%lu\nfx_nonfinite=%lu\n",
+               fx_event_count[FX_EV_OVERFLOW], fx_event_count[FX_EV_DOMAIN],
+               fx_event_count[FX_EV_NONFINITE]);
 #endif
     }
     fprintf(stderr, "%s: wrote %s (%dx%d, %s)\n", app_name, o.output, o.width, o.height, APP_REAL);

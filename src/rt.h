@@ -115,6 +115,8 @@ typedef struct rt_scene {
     int reach_depth;                    /* recursion depth the materials can reach */
     uint32_t occluders[RT_MAX_LIGHTS];  /* per light: objects that can shadow something */
     int forced;                         /* 1: every effect forced on, nothing skipped */
+    uint32_t near_lights;               /* bit i: a surface passes within RT_NEAR_LIGHT of
+                                           light i (shadow rays are then aimed with care) */
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
@@ -182,6 +184,11 @@ enum rt_split_reason {
     RT_SPLIT_SECONDARY, /* the ray tree's shape or an object at a secondary level differs */
     RT_SPLIT_CONTRIB    /* a node's contribution differs by more than the threshold */
 };
+
+/* A light closer than this to a surface gets shadow rays aimed from their offset origin: the
+ * plain ray from an offset origin along the direction from the hit point ends up to
+ * 2 R_EPS_OFFSET from the light, which could put its end behind that surface. */
+#define RT_NEAR_LIGHT r_muli(R_EPS_OFFSET, 4)
 
 /* Per-type interface: every shape is intersected and shaded through this table. */
 typedef struct rt_shape_ops {

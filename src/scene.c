@@ -106,6 +106,22 @@ void rt_scene_force_effects(rt_scene *s)
         s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
 }
 
+/* Does the surface of object o pass within RT_NEAR_LIGHT of the point q? */
+static int scene_light_near(const rt_object *o, vec3 q)
+{
+    real gap;
+    if (o->kind == RT_SPHERE) {
+        real dist = 0;
+        vec3 v = v3_sub(q, o->center);
+        if (!v3_is_zero(v))
+            d3_norm(v, &dist);
+        gap = r_abs(r_sub(dist, o->radius));
+    } else {
+        gap = r_abs(r_sub(v3_dot_d(q, o->normal), o->offset));
+    }
+    return gap < RT_NEAR_LIGHT;
+}
+
 void rt_scene_prepare(rt_scene *s)
 {
     for (int i = 0; i < s->nobjects; i++) {
@@ -113,14 +129,23 @@ void rt_scene_prepare(rt_scene *s)
         if (o->kind == RT_SPHERE) {
             o->radius2 = w_sq(o->radius);
         } else {
-            /* A plane is given by any normal vector and the offset along the unit normal. */
-            o->normal = d3_norm(o->axis, 0);
+            /* A plane is given by any normal vector and the offset along the unit normal. A
+             * normal animated through zero has no direction at that instant: the plane is
+             * then no plane at all, and a zero normal makes every ray miss it (parallel). */
+            o->normal = (dir3){0, 0, 0};
+            if (!v3_is_zero(o->axis))
+                o->normal = d3_norm(o->axis, 0);
         }
     }
     for (int i = 0; i < s->nmaterials; i++) {
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
     }
+    s->near_lights = 0;
+    for (int l = 0; l < s->nlights; l++)
+        for (int i = 0; i < s->nobjects; i++)
+            if (scene_light_near(&s->objects[i], s->lights[l].pos))
+                s->near_lights |= 1u << l;
     scene_derive_effects(s);
 }
 
@@ -129,10 +154,17 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->eye = cam->eye;
     v->width = width;
     v->height = height;
-    v->fwd = d3_norm(v3_sub(cam->at, cam->eye), 0);
-    real sin_up;
-    v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
-    if (sin_up < R(0.001)) {
+    /* Keys keep eye and at apart and up non-zero, but animated tracks can cross between keys:
+     * for that instant the camera looks down -z, and a zero up is parallel to anything. */
+    vec3 view = v3_sub(cam->at, cam->eye);
+    v->fwd = (dir3){0, 0, u_neg(U_ONE)};
+    if (!v3_is_zero(view))
+        v->fwd = d3_norm(view, 0);
+    real sin_up = 0;
+    if (!v3_is_zero(cam->up))
+        v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
+    /* 2^-10, exact in both builds, so that both take the same branch */
+    if (sin_up < R(0.0009765625)) {
         /* The up vector is (nearly) parallel to the view: any other axis will do. */
         dir3 alt = {0, 0, U_ONE};
         if (v->fwd.z > U(0.5) || v->fwd.z < U(-0.5))

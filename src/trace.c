@@ -86,8 +86,13 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
     for (int i = 0; i < s->nlights; i++) {
         const rt_light *li = &s->lights[i];
-        real dist;
-        dir3 l = d3_norm(v3_sub(li->pos, p), &dist);
+        /* A light exactly on the surface point has no direction: it lights the point at a
+         * grazing angle, i.e. not at all (l = 0 gives n . l = 0). */
+        vec3 to_light = v3_sub(li->pos, p);
+        real dist = 0;
+        dir3 l = {0, 0, 0};
+        if (!v3_is_zero(to_light))
+            l = d3_norm(to_light, &dist);
         unit ndl = d3_dot(n, l);
         uint8_t state = 0;
         if (ndl > 0) { /* the light is in front of the surface */
@@ -98,16 +103,37 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 occ &= ~((uint32_t)1 << id);
             int blocked = 0;
             if (occ) {
+                /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+                 * light, behind a surface that passes closer to the light than that (a light
+                 * just above a floor seen from the underside of a ball: a false shadow). For
+                 * such lights it is aimed from p_out itself and ends at the light. */
+                real sdist = dist;
+                dir3 sl = l;
+                if (s->near_lights & (1u << i)) {
+                    vec3 to_light_out = v3_sub(li->pos, p_out);
+                    sdist = 0;
+                    if (!v3_is_zero(to_light_out))
+                        sl = d3_norm(to_light_out, &sdist);
+                }
+                /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+                 * off the surface: a surface through the light itself (a light in a corner of
+                 * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
-                blocked = trace_occluded(s, c->stats, occ, p_out, l, dist);
+                if (sdist > R_EPS_OFFSET)
+                    blocked = trace_occluded(s, c->stats, occ, p_out, sl,
+                                             r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
                 state = 1;
                 col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
                 if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
                     /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation */
-                    unit vr = u_add(d3_dot(d, l), u_neg(u_muli(u_mul(ndl, dn), 2)));
+                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
+                     * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
+                     * and eye straight above the point), just outside Q2.30, while every
+                     * partial sum is within [-1, 1] (docs/numerics.md). */
+                    unit ndn = u_neg(u_mul(ndl, dn));
+                    unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
                     if (vr > 0) {
                         real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
                         col = v3_madd(col, li->color, spec);

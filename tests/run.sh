@@ -19,10 +19,10 @@ fail() { failed=$((failed + 1)); echo "FAIL $*"; }
 
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise test_subsample test_scene; do
+  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
     if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
-      grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib)' "$T/$v-$t.log" | sed 's/^/       /'
+      grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib|plane|normalise|  )' "$T/$v-$t.log" | sed 's/^/       /'
     else
       fail "$v/$t"
       sed 's/^/       /' "$T/$v-$t.log" | tail -30
@@ -284,6 +284,14 @@ for real in fixed float; do
     fail "rt-$real: --effects auto and --effects all differ"
   fi
 done
+
+# ---- numerically hard scenes (tests/hard/*.scene; docs/numerics.md) ----------------------------
+while read -r line; do
+  case $line in
+    ok*) pass "${line#ok   }" ;;
+    *) fail "${line#FAIL }" ;;
+  esac
+done < <(tests/hard_scenes.sh 2>&1)
 
 # ---- bad scene files: the table in tests/bad_scenes.txt --------------------------------------
 # Each case: exit 2, one line "FILE:LINE:COL: words", and the same message from both builds.
