@@ -1,11 +1,14 @@
-/* render.c: whole frames: every pixel traced (full mode), or adaptively subsampled; pixel colours. */
+/* render.c: whole frames or horizontal bands of them: every pixel traced (full mode), or adaptively subsampled. */
+#include <string.h>
+
 #include "rt.h"
 
 static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
-                        int stride, rt_stats *stats, uint8_t *traced)
+                        int stride, rt_stats *stats, uint8_t *traced, int band, int nbands)
 {
     rt_sample sample;
-    for (int y = 0; y < v->height; y++) {
+    int y0 = (int)((long)v->height * band / nbands), y1 = (int)((long)v->height * (band + 1) / nbands);
+    for (int y = y0; y < y1; y++) {
         uint32_t *row = pixels + (long)y * stride;
         for (int x = 0; x < v->width; x++) {
             rt_trace_pixel(s, v, p, x, y, stats, &sample);
@@ -17,11 +20,21 @@ static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p,
     }
 }
 
+void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                    int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands)
+{
+    if (nbands < 1 || band < 0 || band >= nbands)
+        return;
+    if (p->mode == RT_MODE_ADAPTIVE)
+        rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced, band, nbands);
+    else
+        render_full(s, v, p, pixels, stride, stats, traced, band, nbands);
+}
+
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced)
 {
-    if (p->mode == RT_MODE_ADAPTIVE)
-        rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced);
-    else
-        render_full(s, v, p, pixels, stride, stats, traced);
+    if (traced)
+        memset(traced, 0, (size_t)v->width * (size_t)v->height);
+    rt_render_band(s, v, p, pixels, stride, stats, work, traced, 0, 1);
 }

@@ -235,10 +235,25 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced);
 
-/* The adaptive mode of rt_render (subsample.c). */
+/* Renders band `band` of `nbands` horizontal bands of the frame: bands of whole rows of grid
+ * squares (adaptive) or of pixel rows (full), split as evenly as the squares allow. Bands write
+ * disjoint pixels, so they may run at the same time (each with its own `work` and `stats`), and
+ * together they give rt_render's frame byte for byte. `traced`, if not NULL, must be cleared
+ * before the first band; bands only set bytes in it (atomically: two bands may mark the same
+ * point of the edge between them). A band traces the corners on its lower edge again, as the
+ * next band does: summed stats count those twice. */
+void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                    int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                    int nbands);
+
+/* The most bands a frame of `height` rows splits into: its rows of squares (adaptive) or of
+ * pixels (full); more bands than this leave some empty. */
+int rt_render_band_count(const rt_params *p, int height);
+
+/* The adaptive mode of rt_render_band (subsample.c). */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         uint32_t *pixels, int stride, rt_stats *stats, void *work,
-                        uint8_t *traced);
+                        uint8_t *traced, int band, int nbands);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -27,6 +27,11 @@ unsigned long rt_render_work_size(const rt_params *p, int width)
     return (2 * row + side * side) * sizeof(rt_sample);
 }
 
+int rt_render_band_count(const rt_params *p, int height)
+{
+    return p->mode == RT_MODE_ADAPTIVE ? ss_count(height, p->grid) : height;
+}
+
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
 {
     const rt_sample *a = k[0];
@@ -128,8 +133,10 @@ static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
+    /* Bands running at the same time both trace the corners on the edge between them: the
+     * mark is an atomic store, so two of them may set the same byte. */
     if (c->traced)
-        c->traced[(long)y * c->view->width + x] = 1;
+        __atomic_store_n(&c->traced[(long)y * c->view->width + x], 1, __ATOMIC_RELAXED);
 }
 
 /* The sample at pixel (x, y) of the current square, traced on first use. */
@@ -203,23 +210,25 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
 
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         uint32_t *pixels, int stride, rt_stats *stats, void *work,
-                        uint8_t *traced)
+                        uint8_t *traced, int band, int nbands)
 {
     const int g = p->grid, width = v->width, height = v->height;
+    int ncols = ss_count(width, g), nrows = ss_count(height, g);
+    /* This band's rows of squares, and the pixel rows it owns. */
+    int r0 = (int)((long)nrows * band / nbands), r1 = (int)((long)nrows * (band + 1) / nbands);
+    if (r0 == r1)
+        return;
     ss_ctx c = {.scene = s, .view = v, .params = p, .stats = stats, .pixels = pixels,
                 .stride = stride, .traced = traced, .thr8 = r_to_byte(p->threshold),
                 .lstride = g + 1};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = r_from_ratio(i, n);
-    if (traced)
-        memset(traced, 0, (size_t)width * (size_t)height);
 
-    int ncols = ss_count(width, g), nrows = ss_count(height, g);
     rt_sample *top = work, *bot = top + ncols + 1;
     c.lat = bot + ncols + 1;
-    ss_corner_row(&c, top, ncols, 0);
-    for (int r = 0; r < nrows; r++) {
+    ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
+    for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
         if (h == 0)
             memcpy(bot, top, (size_t)(ncols + 1) * sizeof *top); /* a one-pixel-high frame */

@@ -383,6 +383,44 @@ static void test_sizes(void **state)
     }
 }
 
+/* Bands: a frame rendered as 1, 2, 3, ... bands (in any order, as threads would) equals the
+ * frame rendered whole, pixels and traced map, in both modes, for every grid. */
+static void test_bands(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    one_sphere_scene(&s, 0, 0, 2.0);
+    rt_scene_prepare(&s);
+    static uint32_t bandpx[W * H];
+    static uint8_t bandtr[W * H];
+    const int sizes[][2] = {{1, 1}, {7, 1}, {1, 9}, {W, H}, {W - 1, H - 3}, {33, 65}};
+    const int grids[] = {2, 4, 8, 16};
+    for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
+        for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
+            for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
+                int w = sizes[n][0], h = sizes[n][1];
+                const rt_params p = {.depth = 2, .mode = mode, .grid = grids[g],
+                                     .threshold = RT_DEFAULT_THRESHOLD};
+                rt_view v;
+                rt_view_init(&v, &s.camera, w, h);
+                rt_stats st = {0};
+                rt_render(&s, &v, &p, adpx, w, &st, work, traced);
+                int count = rt_render_band_count(&p, h);
+                assert_true(count >= 1);
+                for (int nb = 1; nb <= count + 2; nb++) {
+                    memset(bandpx, 0xAB, sizeof bandpx);
+                    memset(bandtr, 0, sizeof bandtr);
+                    for (int b = nb - 1; b >= 0; b--) /* last band first */
+                        rt_render_band(&s, &v, &p, bandpx, w, &st, work, bandtr, b, nb);
+                    assert_memory_equal(bandpx, adpx, (size_t)(w * h) * sizeof *adpx);
+                    if (mode == RT_MODE_ADAPTIVE)
+                        assert_memory_equal(bandtr, traced, (size_t)(w * h));
+                }
+            }
+        }
+    }
+}
+
 /* Adaptive recursion control: rays weighing less than min_contrib are not cast, and their
  * share is all the picture loses. */
 static void test_min_contrib(void **state)
@@ -425,6 +463,7 @@ int main(void)
         cmocka_unit_test(test_shadow_edge),
         cmocka_unit_test(test_reflected_outline),
         cmocka_unit_test(test_sizes),
+        cmocka_unit_test(test_bands),
         cmocka_unit_test(test_min_contrib),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
