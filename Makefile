@@ -45,7 +45,11 @@ CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/su
              src/texture.c src/scn.c
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app.c src/scn_parse.c src/image.c platform/headless.c $(GEN)/scene_intro.c
+APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c platform/headless.c \
+            platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
+# SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
+SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
+SDL_LIBS = $(shell pkg-config --libs sdl2)
 TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
 
@@ -87,7 +91,7 @@ $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 
 $$(OTHER_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) $(BASE_CFLAGS) $(3) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+	$$(CC) $(BASE_CFLAGS) $(3) $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
 
 # libfixmath is third-party code: the same optimisation and configuration, its own warnings.
 $(BUILD)/obj/$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
@@ -105,7 +109,7 @@ $(eval $(call variant,fixed,1,$(OPT),$(FIXED_CORE_GUARD),0))
 $(eval $(call variant,san-float,0,$(SAN),,1))
 $(eval $(call variant,san-fixed,1,$(SAN),,1))
 
-LIBS := -lpng -lm
+LIBS = -lpng -lm -lpthread $(SDL_LIBS)
 
 $(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
@@ -142,6 +146,36 @@ $(BUILD)/stress-float: $(BUILD)/obj/float/tests/test_stability.o $(CORE_OBJS_flo
 $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fixed) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ -lcmocka -lm
 
+
+# ---- the intro players (build/intro-fixed, build/intro-float): the original's 64 kB limit -----
+# The intro in a window and nothing else (src/player.c over play.c). Built for size: unused
+# functions dropped, no unwind tables, the hot tracer at -O2 and the rest at -Os.
+PLAYER_HOT := fixed/fx.c src/trace.c src/shapes.c src/subsample.c src/noise.c src/texture.c
+PLAYER_COLD := src/scene.c src/render.c src/scn.c src/play.c src/frame.c src/image.c src/player.c \
+               platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
+PLAYER_CFLAGS := $(BASE_CFLAGS) -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
+                 -fno-unwind-tables -fno-stack-protector
+PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none
+PLAYER_LIMIT := 65536
+PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
+
+# $(1) real, $(2) REAL_FIXED, $(3) libfixmath archive or empty
+define player
+PLAYER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT) $(PLAYER_COLD))
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $(PLAYER_CFLAGS) -O2 $(if $(filter 1,$(2)),$(FIXED_CORE_GUARD)) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $(PLAYER_CFLAGS) -Os $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+$(BUILD)/intro-$(1): $$(PLAYER_OBJS_$(1)) $(3)
+	$$(CC) $(PLAYER_LDFLAGS) -o $$@ $$^ $$(LIBS)
+	@strip -o $$@.stripped $$@ && printf 'player %s: %d bytes stripped (limit %d)\n' $$@ $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) && rm -f $$@.stripped
+-include $$(PLAYER_OBJS_$(1):.o=.d)
+endef
+$(eval $(call player,fixed,1,$(BUILD)/obj/fixed/libfixmath.a))
+$(eval $(call player,float,0,))
+all: $(PLAYERS)
 
 # ---- ARM926 images: bare metal for qemu-system-arm -M versatilepb (platform/arm/) ---------
 # The same core, the intro compiled in, and src/intro.c (play, frames, bench) over the ARM

@@ -12,7 +12,7 @@ top=$(cd "$(dirname "$0")" && pwd)
 deps="$top/build/deps"
 
 # Packages for building and testing on the host.
-packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev xz-utils ca-certificates)
+packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev libsdl2-dev xz-utils ca-certificates)
 # The ARM926 images and their emulator; QEMU's window.
 arm_packages=(gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm)
 gui_packages=(qemu-system-gui)

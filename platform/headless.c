@@ -29,10 +29,8 @@ void plat_frame_release(plat_frame *f)
 int plat_frame_present(const plat_frame *f, const char *dest)
 {
     char err[512];
-    if (!dest) {
-        fprintf(stderr, "error: the headless backend has no display; give an output file\n");
-        return -1;
-    }
+    if (!dest)
+        return plat_display_show(f);
     if (img_save(dest, f->pixels, f->width, f->height, f->stride, err, sizeof err) != 0) {
         fprintf(stderr, "error: %s\n", err);
         return -1;

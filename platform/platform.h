@@ -2,8 +2,9 @@
  *
  * A backend owns main() and the frame memory; it calls into the program (app_main) and gets
  * frames back through plat_frame_present. Pixels are 0x00RRGGBB, `stride` pixels per row.
- * Backends: platform/headless.c (image files on a desktop system), platform/arm/ (bare-metal
- * ARM926 on QEMU's versatilepb board: PL110 framebuffer, UART, semihosting files).
+ * Backends: the desktop, platform/headless.c (image files, clock, main) with threads.c (worker
+ * threads) and sdl.c (a window through SDL2); platform/arm/ (bare-metal ARM926 on QEMU's
+ * versatilepb board: PL110 framebuffer, UART, semihosting files).
  */
 #ifndef FIXRAY_PLATFORM_H
 #define FIXRAY_PLATFORM_H
@@ -36,6 +37,38 @@ uint64_t plat_time_ns(void);
 
 /* Writes one line of text (no newline in `line`) to the log: standard error, or the UART. */
 void plat_log(const char *line);
+
+/* ---- desktop only: worker threads (platform/threads.c) ------------------------------------ */
+
+#define PLAT_MAX_THREADS 64
+
+/* Processors available to this process, 1..PLAT_MAX_THREADS. */
+int plat_cpu_count(void);
+
+/* Runs job(ctx, worker) on `threads` workers at once (worker = 0 .. threads - 1; the caller is
+ * worker 0) and returns when all have returned. The pool starts on first use and is kept. */
+void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx);
+
+/* ---- desktop only: a window and keys (platform/sdl.c) --------------------------------------- */
+
+/* What the player's keys ask for. */
+enum plat_key { PLAT_KEY_NONE, PLAT_KEY_QUIT, PLAT_KEY_PAUSE, PLAT_KEY_SAMPLES, PLAT_KEY_BACK,
+                PLAT_KEY_FORWARD, PLAT_KEY_GRID };
+
+/* Opens a resizable window showing frames of width x height, scaled to fit (F toggles full
+ * screen). Returns 0, or -1 after printing a one-line error (no display). */
+int plat_display_open(int width, int height, const char *title);
+
+/* Shows a frame of the size the display was opened with (plat_frame_present with no file). */
+int plat_display_show(const plat_frame *f);
+
+/* The next key pressed (enum plat_key), or PLAT_KEY_NONE; never waits. */
+int plat_display_poll(void);
+
+/* A status line: the window title. */
+void plat_display_status(const char *text);
+
+void plat_display_close(void);
 
 /* The program, called by the backend's main(). Returns the process exit status. */
 int app_main(int argc, char **argv);

@@ -1,0 +1,80 @@
+/* threads.c: the desktop's worker threads (POSIX): a small pool, started on first use, that runs one job on several workers and waits for all of them. */
+#include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include "platform.h"
+
+static pthread_mutex_t th_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t th_start = PTHREAD_COND_INITIALIZER;
+static pthread_cond_t th_done = PTHREAD_COND_INITIALIZER;
+static int th_started;       /* workers running besides the caller (ids 1..th_started) */
+static unsigned long th_gen; /* counts jobs: a new value wakes the workers */
+static int th_active;        /* workers taking part in the current job, the caller included */
+static int th_pending;       /* of those besides the caller, still working */
+static void (*th_job)(void *ctx, int worker);
+static void *th_ctx;
+
+static void *th_main(void *arg)
+{
+    int id = (int)(intptr_t)arg;
+    unsigned long seen = 0;
+    pthread_mutex_lock(&th_lock);
+    for (;;) {
+        while (th_gen == seen)
+            pthread_cond_wait(&th_start, &th_lock);
+        seen = th_gen;
+        if (id < th_active) {
+            void (*job)(void *, int) = th_job;
+            void *ctx = th_ctx;
+            pthread_mutex_unlock(&th_lock);
+            job(ctx, id);
+            pthread_mutex_lock(&th_lock);
+            if (--th_pending == 0)
+                pthread_cond_signal(&th_done);
+        }
+    }
+    return NULL;
+}
+
+int plat_cpu_count(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > PLAT_MAX_THREADS ? PLAT_MAX_THREADS : (int)n;
+}
+
+void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx)
+{
+    if (threads > PLAT_MAX_THREADS)
+        threads = PLAT_MAX_THREADS;
+    pthread_mutex_lock(&th_lock);
+    while (th_started < threads - 1) {
+        pthread_t t;
+        if (pthread_create(&t, NULL, th_main, (void *)(intptr_t)(th_started + 1)) != 0) {
+            fprintf(stderr, "warning: could not start a worker thread; using %d\n", th_started + 1);
+            break;
+        }
+        pthread_detach(t);
+        th_started++;
+    }
+    if (threads > th_started + 1)
+        threads = th_started + 1;
+    if (threads <= 1) {
+        pthread_mutex_unlock(&th_lock);
+        job(ctx, 0);
+        return;
+    }
+    th_job = job;
+    th_ctx = ctx;
+    th_active = threads;
+    th_pending = threads - 1;
+    th_gen++;
+    pthread_cond_broadcast(&th_start);
+    pthread_mutex_unlock(&th_lock);
+    job(ctx, 0);
+    pthread_mutex_lock(&th_lock);
+    while (th_pending > 0)
+        pthread_cond_wait(&th_done, &th_lock);
+    pthread_mutex_unlock(&th_lock);
+}

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# play.sh: the desktop player under Xvfb and multi-threaded rendering: screenshots equal headless frames, every thread count gives the same bytes, the player's size.
+#
+# Expects make all. Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them); exits 1 if any
+# check fails.
+set -u
+cd "$(dirname "$0")/.."
+
+B=build
+T=$B/test/play
+rm -rf "$T" && mkdir -p "$T"
+status=0
+pass() { echo "ok   $*"; }
+fail() { echo "FAIL $*"; status=1; }
+SIZE_LIMIT=65536
+
+# An X server of our own for the window (Xvfb, through xvfb-run).
+if ! command -v xvfb-run >/dev/null; then
+  fail "play: xvfb-run is missing (./setup.sh --test installs xvfb)"
+  exit 1
+fi
+xrun() { xvfb-run -a -s "-screen 0 1024x768x24" "$@"; }
+
+# Scripted play: N frames, one frame period each, then the last frame shown as a screenshot;
+# it must equal the headless render of that frame (frame N - 1) at the same size.
+for real in fixed float; do
+  for case in "12 320x240 1" "30 160x120 2" "5 200x150 3"; do
+    read -r n size threads <<<"$case"
+    shot=$T/play-$real-$n.png
+    if xrun "$B/rt-$real" play --frames "$n" --size "$size" --threads "$threads" --screenshot "$shot" \
+        >"$T/play-$real-$n.log" 2>&1; then
+      "$B/rt-$real" render --frame $((n - 1)) --size "$size" -o "$T/render-$real-$n.png" 2>/dev/null
+      line=$("$B/rt-cmp" "$shot" "$T/render-$real-$n.png" 2>&1)
+      if grep -q 'differing=0 ' <<<"$line"; then
+        pass "rt-$real play --frames $n --size $size --threads $threads under Xvfb: screenshot = render --frame $((n - 1)) ($(grep -o '[0-9.]* fps shown' "$T/play-$real-$n.log"))"
+      else
+        fail "rt-$real play --frames $n: screenshot differs from render --frame $((n - 1)): $line"
+      fi
+    else
+      fail "rt-$real play --frames $n --size $size under Xvfb: $(tail -2 "$T/play-$real-$n.log" | tr '\n' ' ')"
+    fi
+  done
+done
+
+# Threads: 1 thread and several give the same bytes, both builds, both modes, several frames.
+for real in fixed float; do
+  bad=""
+  for t in 3 17 26 36 45; do
+    for mode in adaptive full; do
+      "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads 1 -o "$T/t1.ppm" 2>/dev/null
+      for th in 2 3 7; do
+        "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads $th -o "$T/tn.ppm" 2>/dev/null
+        cmp -s "$T/t1.ppm" "$T/tn.ppm" || bad="$bad t=$t/$mode/$th"
+      done
+    done
+  done
+  [ -z "$bad" ] && pass "rt-$real render: 2, 3 and 7 threads give the bytes of 1 thread (5 intro times, both modes)" ||
+    fail "rt-$real render: threads change the picture:$bad"
+done
+# and under the sanitizers, with the traced-point map
+for real in fixed float; do
+  "$B/san-$real/rt" render --time 36 --size 96x72 --threads 1 --show-samples -o "$T/s1.ppm" 2>"$T/s1.log" &&
+    "$B/san-$real/rt" render --time 36 --size 96x72 --threads 4 --show-samples -o "$T/s4.ppm" 2>"$T/s4.log" &&
+    cmp -s "$T/s1.ppm" "$T/s4.ppm" && pass "san-$real: 4 threads with --show-samples = 1 thread, no sanitizer report" ||
+    fail "san-$real: 4 threads with --show-samples: $(cat "$T/s1.log" "$T/s4.log" | tail -3 | tr '\n' ' ')"
+done
+
+# The player program, stripped, within the original intro's 64 kB (SDL2 linked dynamically).
+for real in fixed float; do
+  strip -o "$T/player-$real" "$B/intro-$real"
+  size=$(stat -c %s "$T/player-$real")
+  [ "$size" -le $SIZE_LIMIT ] && pass "player build/intro-$real stripped: $size bytes <= $SIZE_LIMIT" ||
+    fail "player build/intro-$real stripped: $size bytes > $SIZE_LIMIT"
+done
+exit $status
