@@ -7,11 +7,14 @@
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
+#   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
+#   make soak [STEP=N]    every (Nth) frame of the intro, twice, both builds: same pictures, flat memory
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
 #   float, fixed          -O2, the programs users run
 #   san-float, san-fixed  -O1 with AddressSanitizer + UBSan and numeric event counting: tests
+#   fuzz-float, fuzz-fixed  clang -O1, libFuzzer + ASan + UBSan + numeric event counting
 
 BUILD := build
 CC ?= cc
@@ -33,13 +36,17 @@ BASE_CFLAGS := -std=c11 $(WARN) -ffp-contract=off -fno-strict-aliasing -g
 CPPFLAGS := -Ifixed -Isrc -Iplatform -isystem $(FIXMATH_DIR)/libfixmath $(FIXMATH_DEFS)
 OPT := -O2
 SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# The scene fuzzer: libFuzzer through clang, with ASan + UBSan and numeric event counting.
+FUZZ_CC := clang
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 
 # The tracer core: the same sources in every variant.
 CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
              src/texture.c src/scn.c
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app.c src/scn_parse.c src/image.c platform/headless.c $(GEN)/scene_intro.c
+APP_SRCS := src/app.c src/scn_parse.c src/image.c src/outpath.c platform/headless.c $(GEN)/scene_intro.c
 TESTS := test_numeric test_shapes test_noise test_subsample test_scene
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
 
@@ -52,9 +59,11 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san
+.PHONY: all run test bench bench-subsample bench-effects scene-programs clean distclean setup san \
+        fuzz soak fuzz-progs
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
+fuzz-progs: $(FUZZ_PROGS)
 
 # ---- libfixmath: fetched through apt by setup.sh, SHA-256 checked, extracted here ------------
 $(FIXMATH_TARBALL):
@@ -66,26 +75,27 @@ $(FIXMATH_STAMP): $(FIXMATH_TARBALL)
 	touch $@
 
 # ---- variants ------------------------------------------------------------------------------
-# $(1) variant, $(2) REAL_FIXED, $(3) flags, $(4) extra flags for the core, $(5) FX_COUNT_EVENTS
+# $(1) variant, $(2) REAL_FIXED, $(3) flags, $(4) extra flags for the core, $(5) FX_COUNT_EVENTS,
+# $(6) compiler (default $(CC))
 define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) $(BASE_CFLAGS) $(3) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+	$(or $(6),$(CC)) $(BASE_CFLAGS) $(3) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
 
 $$(OTHER_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) $(BASE_CFLAGS) $(3) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+	$(or $(6),$(CC)) $(BASE_CFLAGS) $(3) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
 
 # libfixmath is third-party code: the same optimisation and configuration, its own warnings.
 $(BUILD)/obj/$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) -std=c11 $(3) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+	$(or $(6),$(CC)) -std=c11 $(3) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
 
 $(BUILD)/obj/$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
 	rm -f $$@ && ar rcs $$@ $$^
@@ -97,6 +107,8 @@ $(eval $(call variant,float,0,$(OPT),,0))
 $(eval $(call variant,fixed,1,$(OPT),$(FIXED_CORE_GUARD),0))
 $(eval $(call variant,san-float,0,$(SAN),,1))
 $(eval $(call variant,san-fixed,1,$(SAN),,1))
+$(eval $(call variant,fuzz-float,0,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
+$(eval $(call variant,fuzz-fixed,1,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 
 LIBS := -lpng -lm
 
@@ -106,11 +118,12 @@ $(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
 $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
-$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o
+$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o $(BUILD)/obj/float/src/outpath.o
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 # The scene compiler runs at build time, so it is built from the float objects.
-$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o $(CORE_OBJS_float)
+$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o \
+                   $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 
 $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
@@ -128,6 +141,16 @@ $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scn
 endef
 $(eval $(call san_progs,san-float))
 $(eval $(call san_progs,san-fixed))
+
+# build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
+define fuzz_prog
+$(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $$@ $$^ -lm
+endef
+$(eval $(call fuzz_prog,fuzz-float))
+$(eval $(call fuzz_prog,fuzz-fixed))
+FUZZ_PROGS := $(BUILD)/fuzz-float/fuzz_scene $(BUILD)/fuzz-fixed/fuzz_scene
 
 
 # ---- user commands -------------------------------------------------------------------------
@@ -150,8 +173,18 @@ run: setup
 	@echo "run: intro stills in $(BUILD)/out/intro-T-fixed.png and intro-T-float.png (T = $(INTRO_STILLS) s); intro-35-samples.png shows the points adaptive subsampling traced"
 
 test: setup
-	@$(MAKE) --no-print-directory all san
+	@$(MAKE) --no-print-directory all san fuzz-progs
 	@tests/run.sh
+
+SECONDS ?= 60
+fuzz: setup
+	@$(MAKE) --no-print-directory fuzz-progs
+	@tests/fuzz.sh $(SECONDS)
+
+STEP ?= 1
+soak: setup
+	@$(MAKE) --no-print-directory all
+	@tests/soak.sh $(STEP)
 
 bench: setup
 	@$(MAKE) --no-print-directory all
@@ -171,7 +204,7 @@ scene-programs: setup
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(HOST_PROGS)
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS)
 
 distclean:
 	rm -rf $(BUILD)

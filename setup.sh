@@ -9,8 +9,10 @@ set -euo pipefail
 top=$(cd "$(dirname "$0")" && pwd)
 deps="$top/build/deps"
 
-# Packages for building and testing on the host.
-packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev xz-utils ca-certificates)
+# Packages for building and testing on the host; clang and libclang-rt-14-dev build the scene
+# fuzzer (libFuzzer), valgrind and time serve make test's memcheck run and soak.
+packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev xz-utils ca-certificates
+  clang libclang-rt-14-dev valgrind time)
 
 # libfixmath: the Debian source package version, and the upstream tarball it ships.
 fixmath_version="0~20220222-3"

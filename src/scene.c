@@ -14,8 +14,8 @@ static int scene_plane_occludes(const rt_scene *s, int pl, vec3 lp)
 {
     const rt_object *p = &s->objects[pl];
     real sl = scene_side(p, lp);
-    if (sl == 0)
-        return 1;
+    if (sl == 0) /* a light in the plane: any other object's shadow ray may graze it */
+        return s->nobjects > 1;
     for (int j = 0; j < s->nobjects; j++) {
         const rt_object *o = &s->objects[j];
         if (j == pl)
@@ -124,20 +124,30 @@ void rt_scene_prepare(rt_scene *s)
     scene_derive_effects(s);
 }
 
+int rt_view_ok(const rt_camera *cam)
+{
+    return cam->eye.x != cam->at.x || cam->eye.y != cam->at.y || cam->eye.z != cam->at.z;
+}
+
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
 {
     v->eye = cam->eye;
     v->width = width;
     v->height = height;
     v->fwd = d3_norm(v3_sub(cam->at, cam->eye), 0);
-    real sin_up;
-    v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
-    if (sin_up < R(0.001)) {
-        /* The up vector is (nearly) parallel to the view: any other axis will do. */
+    /* An animated up vector may pass through zero: then, as when it is (nearly) parallel to
+     * the view (sine below 0.001, the cross product nearly zero), any other axis will do.
+     * Tested before normalising or crossing, so that no zero vector is ever normalised. */
+    int up_zero = cam->up.x == 0 && cam->up.y == 0 && cam->up.z == 0;
+    dir3 up = up_zero ? v->fwd : d3_norm(cam->up, 0);
+    unit c = d3_dot(v->fwd, up);
+    if (up_zero || u_mul(c, c) > U(0.999999)) {
         dir3 alt = {0, 0, U_ONE};
         if (v->fwd.z > U(0.5) || v->fwd.z < U(-0.5))
             alt = (dir3){U_ONE, 0, 0};
         v->right = d3_cross(v->fwd, alt, 0);
+    } else {
+        v->right = d3_cross(v->fwd, up, 0);
     }
     v->up = d3_cross(v->right, v->fwd, 0);
     unit sn, cs;

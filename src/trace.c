@@ -86,11 +86,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
     for (int i = 0; i < s->nlights; i++) {
         const rt_light *li = &s->lights[i];
-        real dist;
-        dir3 l = d3_norm(v3_sub(li->pos, p), &dist);
+        real dist = 0;
+        vec3 to_light = v3_sub(li->pos, p);
+        /* A light exactly on the surface point gives no direction: it lights nothing there. */
+        int at_light = to_light.x == 0 && to_light.y == 0 && to_light.z == 0;
+        dir3 l = at_light ? n : d3_norm(to_light, &dist);
         unit ndl = d3_dot(n, l);
         uint8_t state = 0;
-        if (ndl > 0) { /* the light is in front of the surface */
+        if (!at_light && ndl > 0) { /* the light is in front of the surface */
             /* A convex surface never shadows its own lit side; seen from inside (glass) it
              * can. Lights nothing can occlude cast no shadow ray at all. */
             uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
@@ -106,8 +109,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
                 if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
                     /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation */
-                    unit vr = u_add(d3_dot(d, l), u_neg(u_muli(u_mul(ndl, dn), 2)));
+                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation.
+                     * (n.l)(d.n) = q is in [-1, 0]; 2q would leave Q2.30 for a head-on ray, so q is
+                     * taken off twice: d.l - q = vr + q <= vr <= 1 stays in range. */
+                    unit q = u_neg(u_mul(ndl, dn));
+                    unit vr = u_add(u_add(d3_dot(d, l), q), q);
                     if (vr > 0) {
                         real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
                         col = v3_madd(col, li->color, spec);
