@@ -23,6 +23,7 @@ extern const scn_desc scn_intro;
 
 #define APP_MAX_SIDE 4096
 #define APP_MAX_TIME_MS SCN_MAX_DURATION_MS
+#define APP_MAX_FRAME ((long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS) /* of the longest scene */
 
 static const char *app_name = "rt";
 
@@ -174,7 +175,7 @@ static int app_parse_size(const char *s, int *w, int *h)
 static int app_parse_frames(const char *s, long *first, long *last)
 {
     const char *p;
-    long max = (long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS;
+    long max = APP_MAX_FRAME;
     if (strcmp(s, "all") == 0) {
         *first = 0;
         *last = -1;
@@ -256,7 +257,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected seconds in 0..3600 with at most 3 decimals", v);
             o->have_time = 1;
         } else if (strcmp(a, "--frame") == 0) {
-            if (app_parse_int(v, NULL, 0, (long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS, &o->frame) != 0)
+            if (app_parse_int(v, NULL, 0, APP_MAX_FRAME, &o->frame) != 0)
                 return app_error(a, "expected a frame number (0 or more)", v);
             o->have_frame = 1;
         } else if (strcmp(a, "--frames") == 0) {
@@ -264,7 +265,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected FIRST-LAST frame numbers with FIRST <= LAST, or all", v);
             o->have_frames = 1;
         } else if (strcmp(a, "--step") == 0) {
-            if (app_parse_int(v, NULL, 1, (long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS, &o->step) != 0)
+            if (app_parse_int(v, NULL, 1, APP_MAX_FRAME, &o->step) != 0)
                 return app_error(a, "expected a whole number of frames, 1 or more", v);
             o->have_step = 1;
         } else if (strcmp(a, "--checksum") == 0) {
@@ -327,6 +328,8 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         if (fields == -1)
             return app_error("-o", "a '%' starts the frame-number field (%d, %04d, ...) or "
                              "stands for itself as %%", o->output);
+        if (fields == -2)
+            return app_error("-o", "the file name is too long", NULL);
         if (fields != 1)
             return app_error("-o", "with --frames the output needs one frame-number field, "
                              "such as %04d", o->output);
@@ -468,12 +471,11 @@ static int app_render(int argc, char **argv)
     for (long i = 0; i < nframes; i++) {
         long f = o.first + i * o.step;
         int32_t t = o.have_frames ? (int32_t)(f * 1000 / desc->fps) : o.time_ms;
-        if (o.output && !o.have_frames)
-            snprintf(out, sizeof out, "%s", o.output);
+        err[0] = 0;
         if (o.output && o.have_frames && app_expand(o.output, f, out, sizeof out) != 1)
             snprintf(err, sizeof err, "%.64s...: the file name is too long", o.output);
-        else if (!o.output || outpath_check(out, err, sizeof err) == 0)
-            err[0] = 0;
+        else if (o.output)
+            outpath_check(o.have_frames ? out : o.output, err, sizeof err);
         if (err[0]) {
             fprintf(stderr, "%s: %s\n", app_name, err);
             return 2;

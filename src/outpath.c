@@ -3,10 +3,15 @@
 #include "outpath.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+/* Room the temporary file's name takes beyond the file's: ".tmp-XXXXXX" (image.c) or
+ * ".tmp-<pid>" (scenec.c). */
+#define OUTPATH_TMP_SUFFIX 16
 
 int outpath_check(const char *path, char *err, size_t errlen)
 {
@@ -15,18 +20,20 @@ int outpath_check(const char *path, char *err, size_t errlen)
         snprintf(err, errlen, "the output file name is empty");
         return -1;
     }
-    if (path[strlen(path) - 1] == '/' || (stat(path, &st) == 0 && S_ISDIR(st.st_mode))) {
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    if (strlen(path) + OUTPATH_TMP_SUFFIX >= PATH_MAX ||
+        strlen(base) + OUTPATH_TMP_SUFFIX > NAME_MAX) {
+        snprintf(err, errlen, "%.64s...: the file name is too long", path);
+        return -1;
+    }
+    if (!base[0] || (stat(path, &st) == 0 && S_ISDIR(st.st_mode))) {
         snprintf(err, errlen, "%s: is a folder, not a file name", path);
         return -1;
     }
     /* The folder the file (and its temporary file) goes to. */
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
+    char dir[PATH_MAX];
     size_t n = slash ? (size_t)(slash - path) : 0;
-    if (n >= sizeof dir) {
-        snprintf(err, errlen, "%.64s...: the file name is too long", path);
-        return -1;
-    }
     if (!slash)
         strcpy(dir, ".");
     else if (n == 0)
