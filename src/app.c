@@ -79,6 +79,8 @@ static void app_usage(FILE *f)
             "  --stats             print key=value statistics on standard output (with --frames:\n"
             "                      summed over the frames)\n"
             "       %s --help\n"
+            "Errors get one line on standard error: exit status 2 for bad options, scenes and\n"
+            "output names (all refused before rendering), 1 when writing a file fails.\n"
             "Number system of this build: %s.\n",
             app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, app_name, APP_REAL);
 }
