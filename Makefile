@@ -13,11 +13,14 @@
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
+#   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
+#   make soak [STEP=N]    every (Nth) frame of the intro, twice, both builds: same pictures, flat memory
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
 # Variants (object trees under build/obj/<variant>):
 #   float, fixed          -O2, the programs users run
 #   san-float, san-fixed  -O1 with AddressSanitizer + UBSan and numeric event counting: tests
+#   fuzz-float, fuzz-fixed  clang -O1, libFuzzer + ASan + UBSan + numeric event counting
 
 BUILD := build
 CC ?= cc
@@ -39,14 +42,18 @@ BASE_CFLAGS := -std=c11 $(WARN) -ffp-contract=off -fno-strict-aliasing -g
 CPPFLAGS := -Ifixed -Isrc -Iplatform -isystem $(FIXMATH_DIR)/libfixmath $(FIXMATH_DEFS)
 OPT := -O2
 SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# The scene fuzzer: libFuzzer through clang, with ASan + UBSan and numeric event counting.
+FUZZ_CC := clang
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 
 # The tracer core: the same sources in every variant.
 CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
              src/texture.c src/scn.c
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c platform/headless.c \
-            platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
+APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c src/outpath.c \
+            platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
 SDL_LIBS = $(shell pkg-config --libs sdl2)
@@ -63,7 +70,7 @@ HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-sc
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
 .PHONY: all run test bench bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-gui arm qemu qemu-frames qemu-bench
+        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -77,26 +84,27 @@ $(FIXMATH_STAMP): $(FIXMATH_TARBALL)
 	touch $@
 
 # ---- variants ------------------------------------------------------------------------------
-# $(1) variant, $(2) REAL_FIXED, $(3) flags, $(4) extra flags for the core, $(5) FX_COUNT_EVENTS
+# $(1) variant, $(2) REAL_FIXED, $(3) flags, $(4) extra flags for the core, $(5) FX_COUNT_EVENTS,
+# $(6) compiler (default $(CC))
 define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) $(BASE_CFLAGS) $(3) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+	$(or $(6),$(CC)) $(BASE_CFLAGS) $(3) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
 
 $$(OTHER_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) $(BASE_CFLAGS) $(3) $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
+	$(or $(6),$(CC)) $(BASE_CFLAGS) $(3) $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=$(5) -MMD -MP -c $$< -o $$@
 
 # libfixmath is third-party code: the same optimisation and configuration, its own warnings.
 $(BUILD)/obj/$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$$(CC) -std=c11 $(3) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+	$(or $(6),$(CC)) -std=c11 $(3) $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
 
 $(BUILD)/obj/$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
 	rm -f $$@ && ar rcs $$@ $$^
@@ -108,6 +116,8 @@ $(eval $(call variant,float,0,$(OPT),,0))
 $(eval $(call variant,fixed,1,$(OPT),$(FIXED_CORE_GUARD),0))
 $(eval $(call variant,san-float,0,$(SAN),,1))
 $(eval $(call variant,san-fixed,1,$(SAN),,1))
+$(eval $(call variant,fuzz-float,0,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
+$(eval $(call variant,fuzz-fixed,1,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 
 LIBS = -lpng -lm -lpthread $(SDL_LIBS)
 
@@ -117,11 +127,12 @@ $(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
 $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
-$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o
+$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o $(BUILD)/obj/float/src/outpath.o
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 # The scene compiler runs at build time, so it is built from the float objects.
-$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o $(CORE_OBJS_float)
+$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o \
+                   $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 
 $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
@@ -216,6 +227,18 @@ endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
 
+# build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
+define fuzz_prog
+$(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $$@ $$^ -lm
+endef
+$(eval $(call fuzz_prog,fuzz-float))
+$(eval $(call fuzz_prog,fuzz-fixed))
+FUZZ_PROGS := $(BUILD)/fuzz-float/fuzz_scene $(BUILD)/fuzz-fixed/fuzz_scene
+fuzz-progs: $(FUZZ_PROGS)
+
+
 # ---- user commands -------------------------------------------------------------------------
 setup:
 	@./setup.sh
@@ -223,27 +246,32 @@ setup:
 setup-arm:
 	@./setup.sh --arm
 
+setup-test:
+	@./setup.sh --test
+
 setup-gui:
 	@./setup.sh --arm --gui
 
-# Stills of the intro, one per part, rendered by both builds and compared (the player is
-# issue [sdl]); then the traced points of one of them.
-INTRO_STILLS := 8 17 25 35 44
+# Plays the intro in a window; without a display, renders it headless into build/out/intro/
+# with a progress bar and prints frames per second (src/tools/run-intro.sh). REAL=fixed|float.
+RUN_REAL ?= float
 run: setup
-	@$(MAKE) --no-print-directory all
-	@mkdir -p $(BUILD)/out
-	@for t in $(INTRO_STILLS); do \
-	  $(BUILD)/rt-fixed render --size 640x480 --time $$t -o $(BUILD)/out/intro-$$t-fixed.png || exit 1; \
-	  $(BUILD)/rt-float render --size 640x480 --time $$t -o $(BUILD)/out/intro-$$t-float.png || exit 1; \
-	  printf 'intro t=%ss, fixed vs float: ' $$t; \
-	  $(BUILD)/rt-cmp $(BUILD)/out/intro-$$t-fixed.png $(BUILD)/out/intro-$$t-float.png || exit 1; \
-	done
-	$(BUILD)/rt-fixed render --size 640x480 --time 35 --show-samples --stats -o $(BUILD)/out/intro-35-samples.png
-	@echo "run: intro stills in $(BUILD)/out/intro-T-fixed.png and intro-T-float.png (T = $(INTRO_STILLS) s); intro-35-samples.png shows the points adaptive subsampling traced"
+	@$(MAKE) -s --no-print-directory all
+	@src/tools/run-intro.sh $(if $(filter command line,$(origin REAL)),$(REAL),$(RUN_REAL))
 
-test: setup-arm
-	@$(MAKE) --no-print-directory all san arm
+test: setup-test
+	@$(MAKE) --no-print-directory all san arm fuzz-progs
 	@tests/run.sh
+
+SECONDS ?= 60
+fuzz: setup
+	@$(MAKE) --no-print-directory fuzz-progs
+	@tests/fuzz.sh $(SECONDS)
+
+STEP ?= 1
+soak: setup
+	@$(MAKE) --no-print-directory all
+	@tests/soak.sh $(STEP)
 
 bench: setup
 	@$(MAKE) --no-print-directory all
@@ -291,7 +319,8 @@ qemu-bench: setup-arm
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
 	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/stress-fixed \
-	       $(BUILD)/stress-float $(HOST_PROGS)
+	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
+	       $(PLAYERS)
 
 distclean:
 	rm -rf $(BUILD)

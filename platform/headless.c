@@ -2,18 +2,20 @@
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "image.h"
 #include "platform.h"
 
+/* The program's name, for messages: "rt-fixed: frame.png: cannot write: ...". */
+static const char *plat_name = "rt";
+
 int plat_frame_acquire(plat_frame *f, int width, int height)
 {
     f->pixels = calloc((size_t)width * (size_t)height, sizeof *f->pixels);
-    if (!f->pixels) {
-        fprintf(stderr, "error: out of memory for a %dx%d frame\n", width, height);
+    if (!f->pixels)
         return -1;
-    }
     f->width = width;
     f->height = height;
     f->stride = width;
@@ -32,7 +34,7 @@ int plat_frame_present(const plat_frame *f, const char *dest)
     if (!dest)
         return plat_display_show(f);
     if (img_save(dest, f->pixels, f->width, f->height, f->stride, err, sizeof err) != 0) {
-        fprintf(stderr, "error: %s\n", err);
+        fprintf(stderr, "%s: %s\n", plat_name, err);
         return -1;
     }
     return 0;
@@ -52,5 +54,9 @@ void plat_log(const char *line)
 
 int main(int argc, char **argv)
 {
+    if (argc > 0 && argv[0][0]) {
+        const char *slash = strrchr(argv[0], '/');
+        plat_name = slash ? slash + 1 : argv[0];
+    }
     return app_main(argc, argv);
 }

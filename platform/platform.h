@@ -17,17 +17,17 @@ typedef struct plat_frame {
 } plat_frame;
 
 /* Gives *f a frame buffer of width x height owned by the platform until plat_frame_release.
- * Returns 0, or -1 after printing a one-line error (out of memory). */
+ * Returns 0, or -1 when there is no memory for it (the caller reports). */
 int plat_frame_acquire(plat_frame *f, int width, int height);
 
-/* Returns the buffer of a frame to the platform. */
+/* Returns the buffer of a frame to the platform (nothing when it has none). */
 void plat_frame_release(plat_frame *f);
 
 /* Hands over a finished frame. With `dest`, writes it to that file through a temporary file and
- * a rename, so no half-written file is ever left (headless: PNG or PPM, chosen by the extension;
+ * a rename, so no half-written file is ever left (desktop: PNG or PPM, chosen by the extension;
  * ARM: PPM on the host through semihosting, and shown on the display too). With dest NULL,
- * shows it on the display (headless: an error). Returns 0, or -1 after logging a one-line
- * error naming the file. */
+ * shows it on the display. Returns 0, or -1 after logging a one-line error naming the program
+ * and the file. */
 int plat_frame_present(const plat_frame *f, const char *dest);
 
 /* Monotonic time in nanoseconds, for measuring only (the picture never depends on it). On the

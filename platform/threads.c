@@ -2,6 +2,7 @@
 #include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 #include "platform.h"
@@ -15,6 +16,8 @@ static int th_active;        /* workers taking part in the current job, the call
 static int th_pending;       /* of those besides the caller, still working */
 static void (*th_job)(void *ctx, int worker);
 static void *th_ctx;
+static int th_quit; /* set at exit: the workers return */
+static pthread_t th_ids[PLAT_MAX_THREADS];
 
 static void *th_main(void *arg)
 {
@@ -25,6 +28,8 @@ static void *th_main(void *arg)
         while (th_gen == seen)
             pthread_cond_wait(&th_start, &th_lock);
         seen = th_gen;
+        if (th_quit)
+            break;
         if (id < th_active) {
             void (*job)(void *, int) = th_job;
             void *ctx = th_ctx;
@@ -35,7 +40,20 @@ static void *th_main(void *arg)
                 pthread_cond_signal(&th_done);
         }
     }
+    pthread_mutex_unlock(&th_lock);
     return NULL;
+}
+
+/* At exit: the workers finish and are joined, so that nothing of theirs is left behind. */
+static void th_stop(void)
+{
+    pthread_mutex_lock(&th_lock);
+    th_quit = 1;
+    th_gen++;
+    pthread_cond_broadcast(&th_start);
+    pthread_mutex_unlock(&th_lock);
+    for (int i = 1; i <= th_started; i++)
+        pthread_join(th_ids[i], NULL);
 }
 
 int plat_cpu_count(void)
@@ -50,12 +68,13 @@ void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx)
         threads = PLAT_MAX_THREADS;
     pthread_mutex_lock(&th_lock);
     while (th_started < threads - 1) {
-        pthread_t t;
-        if (pthread_create(&t, NULL, th_main, (void *)(intptr_t)(th_started + 1)) != 0) {
+        if (th_started == 0 && atexit(th_stop) != 0)
+            break; /* without a way to stop them, no workers: one thread does it all */
+        if (pthread_create(&th_ids[th_started + 1], NULL, th_main,
+                           (void *)(intptr_t)(th_started + 1)) != 0) {
             fprintf(stderr, "warning: could not start a worker thread; using %d\n", th_started + 1);
             break;
         }
-        pthread_detach(t);
         th_started++;
     }
     if (threads > th_started + 1)

@@ -1,10 +1,15 @@
 /* app.c: the command line of rt-float and rt-fixed: parses options and runs the render command. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
+#include "frame.h"
 #include "image.h"
+#include "outpath.h"
 #include "platform.h"
+#include "play.h"
 #include "rt.h"
 #include "scn.h"
 #include "scn_parse.h"
@@ -20,8 +25,15 @@ extern const scn_desc scn_intro;
 
 #define APP_MAX_SIDE 4096
 #define APP_MAX_TIME_MS SCN_MAX_DURATION_MS
+#define APP_MAX_FRAME ((long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS) /* of the longest scene */
 
 static const char *app_name = "rt";
+
+/* The platform's clock in microseconds. */
+static uint64_t app_us(void)
+{
+    return plat_time_ns() / 1000u;
+}
 
 typedef struct app_opts {
     const char *output;
@@ -30,12 +42,19 @@ typedef struct app_opts {
     int32_t time_ms;
     long frame;
     int have_time, have_frame;
+    long first, last, step; /* --frames: a range, last = -1 for the scene's last frame */
+    int have_frames, have_step;
+    int checksum, progress;
     int effects_all;
     int depth; /* -1: the scene's */
     int stats;
     int mode, grid;
     long threshold, min_contrib; /* in 1/10000 */
     int show_samples;
+    int threads;            /* 1..PLAT_MAX_THREADS */
+    int play;               /* the play command: --frames N counts frames */
+    long play_frames;       /* play --frames N: quit after N frames (0: run until quit) */
+    const char *screenshot; /* play --screenshot FILE */
 } app_opts;
 
 #define APP_DECIMALS 4
@@ -44,13 +63,22 @@ typedef struct app_opts {
 static void app_usage(FILE *f)
 {
     fprintf(f,
-            "usage: %s render [options]     render one frame of a scene to an image file\n"
+            "usage: %s render [options]     render frames of a scene to image files\n"
+            "       %s play [options]       play a scene in a window, in real time\n"
             "  --scene FILE        scene file (docs/scene-format.md; default: the built-in intro,\n"
             "                      scenes/intro.scene)\n"
-            "  -o, --output FILE   output image, .png or .ppm (default frame.png)\n"
+            "  -o, --output FILE   output image, .png or .ppm (default frame.png); with --frames\n"
+            "                      a pattern with one frame-number field, e.g. out/intro-%%04d.png\n"
             "  --size WxH          image size, each side 1..%d (default 320x240)\n"
             "  --time SECONDS      moment of the scene's timeline, e.g. 2.5 (default 0)\n"
             "  --frame N           frame N at the scene's frame rate (instead of --time)\n"
+            "  --frames A-B        frames A to B, one file each (-o pattern); --frames all: every\n"
+            "                      frame of the scene\n"
+            "  --step N            with --frames: every Nth frame of the range (default 1)\n"
+            "  --checksum          print frame=N time_ms=T fnv64=H per frame (64-bit FNV-1a of\n"
+            "                      the RGB bytes); writes no image unless -o is given\n"
+            "  --progress          a progress line on standard error (default with --frames when\n"
+            "                      standard error is a terminal)\n"
             "  --depth N           recursion limit 0..%d (default: the scene's)\n"
             "  --mode M            full (trace every pixel) or adaptive (default)\n"
             "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
@@ -61,10 +89,23 @@ static void app_usage(FILE *f)
             "  --effects E         auto: trace only the effects the frame needs (default);\n"
             "                      all: every effect on, for comparison\n"
             "  --show-samples      paint every traced point white\n"
-            "  --stats             print key=value statistics on standard output\n"
+            "  --threads N         render on N threads, 1..%d (default: every processor, %d\n"
+            "                      here); the picture is the same for any N\n"
+            "  --stats             print key=value statistics on standard output (with --frames:\n"
+            "                      summed over the frames)\n"
+            "play: --scene, --size (default 640x480), --threads, --depth, --mode, --grid,\n"
+            "--threshold, --min-contrib and --show-samples as above, and\n"
+            "  --frames N          quit after N frames, stepping the timeline by exactly one frame\n"
+            "                      period each (a scripted, reproducible run)\n"
+            "  --screenshot FILE   save the last frame shown (.png or .ppm)\n"
+            "  keys: Esc or Q quit, Space pause, F full screen, S traced points, Left/Right seek\n"
+            "  5 s, G grid size (2, 4, 8, 16); the title shows frames per second and ms per frame\n"
             "       %s --help\n"
+            "Errors get one line on standard error: exit status 2 for bad options, scenes and\n"
+            "output names (all refused before rendering), 1 when writing a file fails.\n"
             "Number system of this build: %s.\n",
-            app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, app_name, APP_REAL);
+            app_name, app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, PLAT_MAX_THREADS,
+            plat_cpu_count(), app_name, APP_REAL);
 }
 
 static int app_error(const char *option, const char *what, const char *value)
@@ -155,6 +196,55 @@ static int app_parse_size(const char *s, int *w, int *h)
     return 0;
 }
 
+/* --frames: "FIRST-LAST" or "all" (then *last = -1: the scene's last frame). */
+static int app_parse_frames(const char *s, long *first, long *last)
+{
+    const char *p;
+    long max = APP_MAX_FRAME;
+    if (strcmp(s, "all") == 0) {
+        *first = 0;
+        *last = -1;
+        return 0;
+    }
+    if (app_parse_int(s, &p, 0, max, first) != 0 || *p != '-')
+        return -1;
+    return app_parse_int(p + 1, NULL, *first, max, last);
+}
+
+/* The output file of frame `frame`: `pattern` with its frame-number fields ("%d", "%4d",
+ * "%04d": width 1..9) replaced and "%%" turned into "%". Returns the number of fields, -1 for
+ * any other '%', -2 when the name does not fit in n bytes. */
+static int app_expand(const char *pattern, long frame, char *buf, size_t n)
+{
+    size_t k = 0;
+    int fields = 0;
+    for (const char *p = pattern; *p; p++) {
+        char piece[32] = {*p, 0};
+        if (*p == '%' && p[1] == '%') {
+            p++;
+        } else if (*p == '%') {
+            int zero = p[1] == '0', width = 0;
+            p += 1 + zero;
+            if (*p >= '1' && *p <= '9')
+                width = *p++ - '0';
+            if (*p != 'd')
+                return -1;
+            if (zero)
+                snprintf(piece, sizeof piece, "%0*ld", width, frame);
+            else
+                snprintf(piece, sizeof piece, "%*ld", width, frame);
+            fields++;
+        }
+        size_t m = strlen(piece);
+        if (k + m >= n)
+            return -2;
+        memcpy(buf + k, piece, m);
+        k += m;
+    }
+    buf[k] = 0;
+    return fields;
+}
+
 static int app_parse_render(int argc, char **argv, app_opts *o)
 {
     for (int i = 0; i < argc; i++) {
@@ -163,11 +253,25 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         int takes_value = strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
                           strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
                           strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0 ||
+                          strcmp(a, "--frames") == 0 || strcmp(a, "--step") == 0 ||
                           strcmp(a, "--mode") == 0 || strcmp(a, "--grid") == 0 ||
                           strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0 ||
-                          strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0;
+                          strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0 ||
+                          strcmp(a, "--threads") == 0 || strcmp(a, "--screenshot") == 0;
+        static const char *const render_only[] = {"-o", "--output", "--time", "--frame", "--step",
+                                                  "--checksum", "--progress", "--stats",
+                                                  "--effects"};
+        for (size_t k = 0; o->play && k < sizeof render_only / sizeof *render_only; k++)
+            if (strcmp(a, render_only[k]) == 0)
+                return app_error(a, "is an option of render, not of play", NULL);
+        if (!o->play && strcmp(a, "--screenshot") == 0)
+            return app_error(a, "is an option of play, not of render", NULL);
         if (takes_value && !v)
             return app_error(a, "needs a value", NULL);
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            app_usage(stdout);
+            return -1;
+        }
         if (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0) {
             o->output = v;
         } else if (strcmp(a, "--scene") == 0) {
@@ -187,9 +291,35 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected seconds in 0..3600 with at most 3 decimals", v);
             o->have_time = 1;
         } else if (strcmp(a, "--frame") == 0) {
-            if (app_parse_int(v, NULL, 0, (long)APP_MAX_TIME_MS / 1000 * SCN_MAX_FPS, &o->frame) != 0)
+            if (app_parse_int(v, NULL, 0, APP_MAX_FRAME, &o->frame) != 0)
                 return app_error(a, "expected a frame number (0 or more)", v);
             o->have_frame = 1;
+        } else if (strcmp(a, "--frames") == 0 && o->play) {
+            if (app_parse_int(v, NULL, 1, APP_MAX_FRAME, &o->play_frames) != 0)
+                return app_error(a, "expected a number of frames, 1 or more", v);
+        } else if (strcmp(a, "--screenshot") == 0) {
+            if (!img_path_ok(v))
+                return app_error(a, "the screenshot must end in .png or .ppm", v);
+            o->screenshot = v;
+        } else if (strcmp(a, "--threads") == 0) {
+            long n;
+            if (app_parse_int(v, NULL, 1, PLAT_MAX_THREADS, &n) != 0)
+                return app_error(a, "expected a number of threads in 1..64", v);
+            o->threads = (int)n;
+        } else if (strcmp(a, "--frames") == 0) {
+            if (app_parse_frames(v, &o->first, &o->last) != 0)
+                return app_error(a, "expected FIRST-LAST frame numbers with FIRST <= LAST, or all", v);
+            o->have_frames = 1;
+        } else if (strcmp(a, "--step") == 0) {
+            if (app_parse_int(v, NULL, 1, APP_MAX_FRAME, &o->step) != 0)
+                return app_error(a, "expected a whole number of frames, 1 or more", v);
+            o->have_step = 1;
+        } else if (strcmp(a, "--checksum") == 0) {
+            o->checksum = 1;
+            continue;
+        } else if (strcmp(a, "--progress") == 0) {
+            o->progress = 1;
+            continue;
         } else if (strcmp(a, "--depth") == 0) {
             long n;
             if (app_parse_int(v, NULL, 0, RT_MAX_DEPTH, &n) != 0)
@@ -226,142 +356,315 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         }
         i++; /* the value */
     }
-    if (o->have_time && o->have_frame)
-        return app_error("--time", "give either --time or --frame, not both", NULL);
-    if (!o->output)
+    if (o->play) {
+        char err[600];
+        if (o->screenshot && outpath_check(o->screenshot, err, sizeof err) != 0) {
+            fprintf(stderr, "%s: %s\n", app_name, err);
+            return 2;
+        }
+        return 0;
+    }
+    if (o->have_time + o->have_frame + o->have_frames > 1)
+        return app_error(o->have_time ? "--time" : "--frame",
+                         "give only one of --time, --frame and --frames", NULL);
+    if (o->have_step && !o->have_frames)
+        return app_error("--step", "goes with --frames", NULL);
+    if (o->have_frames && !o->output && !o->checksum)
+        return app_error("--frames", "needs -o with a frame-number pattern (such as "
+                         "out/intro-%04d.png) or --checksum", NULL);
+    if (!o->output && !o->checksum)
         o->output = "frame.png";
+    if (o->output && !img_path_ok(o->output))
+        return app_error("-o", "the output must end in .png or .ppm", o->output);
+    if (o->output && o->have_frames) {
+        char name[4096];
+        int fields = app_expand(o->output, 0, name, sizeof name);
+        if (fields == -1)
+            return app_error("-o", "a '%' starts the frame-number field (%d, %04d, ...) or "
+                             "stands for itself as %%", o->output);
+        if (fields == -2)
+            return app_error("-o", "the file name is too long", NULL);
+        if (fields != 1)
+            return app_error("-o", "with --frames the output needs one frame-number field, "
+                             "such as %04d", o->output);
+    }
     return 0;
+}
+
+/* Counters of rt_stats summed over the frames of a run (64 bits: many frames, large ones). */
+typedef struct app_sums {
+    unsigned long long rays[4], shadow_tests, squares[RT_GRID_LEVELS], split[RT_GRID_LEVELS],
+        split_by[5];
+} app_sums;
+
+static void app_add(app_sums *t, const rt_stats *s)
+{
+    t->rays[0] += s->rays_primary;
+    t->rays[1] += s->rays_shadow;
+    t->rays[2] += s->rays_reflect;
+    t->rays[3] += s->rays_refract;
+    t->shadow_tests += s->shadow_tests;
+    for (int l = 0; l < RT_GRID_LEVELS; l++) {
+        t->squares[l] += s->squares[l];
+        t->split[l] += s->split[l];
+    }
+    for (int r = 0; r < 5; r++)
+        t->split_by[r] += s->split_by[r];
+}
+
+/* 64-bit FNV-1a of the frame's RGB bytes, row by row: the bytes of a PPM file's raster. */
+static unsigned long long app_fnv(const plat_frame *f)
+{
+    unsigned long long h = 14695981039346656037ull;
+    for (int y = 0; y < f->height; y++)
+        for (int x = 0; x < f->width; x++) {
+            uint32_t p = f->pixels[(long)y * f->stride + x];
+            for (int c = 16; c >= 0; c -= 8)
+                h = (h ^ ((p >> c) & 0xFF)) * 1099511628211ull;
+        }
+    return h;
+}
+
+static void app_print_stats(const app_opts *o, const char *scene_name, const rt_scene *scene,
+                            const rt_params *params, long frames, const app_sums *t,
+                            uint64_t us, unsigned long work_bytes)
+{
+    printf("real=%s\nscene=%s\nsize=%dx%d\n", APP_REAL, scene_name, o->width, o->height);
+    if (o->have_frames)
+        printf("frames=%ld\nfirst_frame=%ld\nlast_frame=%ld\nstep=%ld\n", frames, o->first,
+               o->last, o->step);
+    else
+        printf("time_ms=%ld\n", (long)o->time_ms);
+    printf("depth=%d\n", params->depth);
+    static const char *const fx_names[] = {"shadow", "specular", "reflect", "refract", "texture",
+                                           "noise"};
+    printf("effects=");
+    for (int b = 0, n = 0; b < 6; b++)
+        if (scene->effects & (1u << b))
+            printf("%s%s", n++ ? "," : "", fx_names[b]);
+    printf("%s\n", scene->effects ? "" : "none");
+    printf("reach_depth=%d\n", params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
+    printf("mode=%s\n", o->mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
+    if (o->mode == RT_MODE_ADAPTIVE)
+        printf("grid=%d\nthreshold=%ld.%04ld\n", o->grid, o->threshold / APP_SCALE,
+               o->threshold % APP_SCALE);
+    printf("min_contrib=%ld.%04ld\n", o->min_contrib / APP_SCALE, o->min_contrib % APP_SCALE);
+    printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000), (unsigned long long)(us % 1000));
+    printf("pixels=%ld\n", (long)o->width * o->height);
+    printf("threads=%d\n", o->threads);
+    printf("samples_traced=%llu\n", t->rays[0]);
+    printf("rays_primary=%llu\nrays_shadow=%llu\nrays_reflect=%llu\nrays_refract=%llu\n",
+           t->rays[0], t->rays[1], t->rays[2], t->rays[3]);
+    printf("shadow_tests=%llu\n", t->shadow_tests);
+    if (o->mode == RT_MODE_ADAPTIVE) {
+        for (int l = 0, size = o->grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
+            printf("squares_%d=%llu\nsplit_%d=%llu\n", size, t->squares[l], size, t->split[l]);
+        printf("split_object=%llu\nsplit_light=%llu\nsplit_secondary=%llu\nsplit_contrib=%llu\n",
+               t->split_by[RT_SPLIT_OBJECT], t->split_by[RT_SPLIT_LIGHT],
+               t->split_by[RT_SPLIT_SECONDARY], t->split_by[RT_SPLIT_CONTRIB]);
+        printf("work_bytes=%lu\n", work_bytes);
+    }
+#if FX_COUNT_EVENTS
+    printf("fx_overflow=%lu\nfx_domain=%lu\nfx_nonfinite=%lu\n", fx_event_count[FX_EV_OVERFLOW],
+           fx_event_count[FX_EV_DOMAIN], fx_event_count[FX_EV_NONFINITE]);
+#endif
+}
+
+/* "12.345 s" of a time in milliseconds, for messages. */
+#define APP_SECONDS(ms) (long)(ms) / 1000, (long)(ms) % 1000
+
+/* The scene of o: a file, or the intro compiled in. Returns NULL after a one-line error. */
+static const scn_desc *app_scene(const app_opts *o, const char **name)
+{
+    static scn_file file;
+    char err[640];
+    *name = "intro (built in)";
+    if (!o->scene)
+        return &scn_intro;
+    if (scn_load(o->scene, &file, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", app_name, err);
+        return NULL;
+    }
+    *name = o->scene;
+    return &file.desc;
+}
+
+/* Options as the command line gives them; threshold and min_contrib in 1/10000
+ * (RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB). */
+static app_opts app_defaults(int play)
+{
+    return (app_opts){.width = play ? 640 : 320, .height = play ? 480 : 240, .depth = -1,
+                      .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID, .threshold = 625,
+                      .min_contrib = 100, .step = 1, .threads = plat_cpu_count(), .play = play};
+}
+
+static int app_play(int argc, char **argv)
+{
+    app_opts o = app_defaults(1);
+    int rc = app_parse_render(argc, argv, &o);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc; /* -1: --help */
+    play_opts p = {.width = o.width, .height = o.height, .threads = o.threads,
+                   .frames = o.play_frames, .screenshot = o.screenshot,
+                   .show_samples = o.show_samples,
+                   .params = {.depth = o.depth, .mode = o.mode, .grid = o.grid,
+                              .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
+                              .threshold = r_from_ratio((int32_t)o.threshold, APP_SCALE)}};
+    p.desc = app_scene(&o, &p.name);
+    if (!p.desc)
+        return 2;
+    return play_run(&p);
 }
 
 static int app_render(int argc, char **argv)
 {
-    /* threshold and min_contrib in 1/10000: RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB */
-    app_opts o = {.width = 320, .height = 240, .depth = -1, .mode = RT_MODE_ADAPTIVE,
-                  .grid = RT_DEFAULT_GRID, .threshold = 625, .min_contrib = 100};
+    app_opts o = app_defaults(0);
     int rc = app_parse_render(argc, argv, &o);
     if (rc != 0)
-        return rc;
-    if (!img_path_ok(o.output))
-        return app_error("-o", "the output must end in .png or .ppm", o.output);
+        return rc < 0 ? 0 : rc; /* -1: --help */
 
-    /* The scene: a file, or the intro compiled in. */
-    static scn_file file;
-    const scn_desc *desc = &scn_intro;
-    const char *scene_name = "intro (built in)";
-    if (o.scene) {
-        char err[640];
-        if (scn_load(o.scene, &file, err, sizeof err) != 0) {
+    const char *scene_name;
+    const scn_desc *desc = app_scene(&o, &scene_name);
+    if (!desc)
+        return 2;
+    char err[640];
+    /* The frames: one moment (--time, --frame), or a range of frames at the scene's rate. */
+    long last_frame = (long)desc->duration_ms * desc->fps / 1000;
+    if (o.have_frames && o.last < 0)
+        o.last = last_frame;
+    if (o.have_frame || o.have_frames) {
+        long f = o.have_frame ? o.frame : o.last;
+        if (f > last_frame) {
+            fprintf(stderr, "%s: %s: %ld is past the last frame of %s (%ld at %ld fps)\n",
+                    app_name, o.have_frame ? "--frame" : "--frames", f, scene_name, last_frame,
+                    (long)desc->fps);
+            return 2;
+        }
+    } else if (o.time_ms > desc->duration_ms) {
+        fprintf(stderr, "%s: --time: %ld.%03ld s is past the end of %s (%ld.%03ld s)\n", app_name,
+                APP_SECONDS(o.time_ms), scene_name, APP_SECONDS(desc->duration_ms));
+        return 2;
+    }
+    if (!o.have_frames) {
+        o.first = o.last = o.have_frame ? o.frame : -1;
+        if (o.have_frame)
+            o.time_ms = (int32_t)(o.frame * 1000 / desc->fps);
+    }
+    long nframes = o.have_frames ? (o.last - o.first) / o.step + 1 : 1;
+
+    /* Everything that can be refused is refused before the first frame is rendered: an output
+     * file that cannot be created, and a camera without a view direction at some frame. */
+    char out[4096];
+    static rt_scene scene;
+    for (long i = 0; i < nframes; i++) {
+        long f = o.first + i * o.step;
+        int32_t t = o.have_frames ? (int32_t)(f * 1000 / desc->fps) : o.time_ms;
+        err[0] = 0;
+        if (o.output && o.have_frames && app_expand(o.output, f, out, sizeof out) != 1)
+            snprintf(err, sizeof err, "%.64s...: the file name is too long", o.output);
+        else if (o.output)
+            outpath_check(o.have_frames ? out : o.output, err, sizeof err);
+        if (err[0]) {
             fprintf(stderr, "%s: %s\n", app_name, err);
             return 2;
         }
-        desc = &file.desc;
-        scene_name = o.scene;
-    }
-    if (o.have_frame) {
-        long last = (long)desc->duration_ms * desc->fps / 1000;
-        if (o.frame > last) {
-            fprintf(stderr, "%s: --frame: %ld is past the last frame of %s (%ld at %ld fps)\n",
-                    app_name, o.frame, scene_name, last, (long)desc->fps);
+        scn_eval(desc, t, &scene);
+        if (!rt_view_ok(&scene.camera)) {
+            fprintf(stderr, "%s: %s: at %ld.%03ld s the camera's eye and the point it looks at "
+                    "coincide: no view direction\n", app_name, scene_name, APP_SECONDS(t));
             return 2;
         }
-        o.time_ms = (int32_t)(o.frame * 1000 / desc->fps);
-    } else if (o.time_ms > desc->duration_ms) {
-        fprintf(stderr, "%s: --time: %ld.%03ld s is past the end of %s (%ld.%03ld s)\n", app_name,
-                (long)o.time_ms / 1000, (long)o.time_ms % 1000, scene_name,
-                (long)desc->duration_ms / 1000, (long)desc->duration_ms % 1000);
-        return 2;
     }
-    static rt_scene scene;
-    scn_eval(desc, o.time_ms, &scene);
-    if (o.effects_all)
-        rt_scene_force_effects(&scene);
+
+    /* Frame buffer, working storage of the adaptive mode and the map of traced points: the
+     * same for every frame, allocated once. */
     rt_params params = {
-        .depth = o.depth >= 0 ? o.depth : scene.depth,
         .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
         .mode = o.mode,
         .grid = o.grid,
         .threshold = r_from_ratio((int32_t)o.threshold, APP_SCALE),
     };
-    rt_view view;
-    rt_view_init(&view, &scene.camera, o.width, o.height);
-
-    /* Working storage of the adaptive mode, and the map of traced points when asked for. */
     unsigned long work_bytes = rt_render_work_size(&params, o.width);
-    void *work = work_bytes ? malloc(work_bytes) : NULL;
-    uint8_t *traced = o.show_samples ? malloc((size_t)o.width * (size_t)o.height) : NULL;
-    plat_frame frame;
-    if ((work_bytes && !work) || (o.show_samples && !traced)) {
-        fprintf(stderr, "%s: out of memory for a %dx%d frame\n", app_name, o.width, o.height);
-        rc = 1;
-    } else if (plat_frame_acquire(&frame, o.width, o.height) != 0) {
-        rc = 1;
-    }
-    if (rc != 0) {
-        free(work);
+    size_t pixels = (size_t)o.width * (size_t)o.height;
+    frame_ctx fc;
+    int fc_ok = frame_init(&fc, o.threads, o.width) == 0;
+    uint8_t *traced = o.show_samples ? malloc(pixels) : NULL;
+    plat_frame frame = {0};
+    if (!fc_ok || (o.show_samples && !traced) ||
+        plat_frame_acquire(&frame, o.width, o.height) != 0) {
+        /* frame, samples map, working storage, and 3 bytes a pixel when the file is written */
+        unsigned long long need = (unsigned long long)pixels * (4 + 3 + (o.show_samples ? 1 : 0))
+                                  + (unsigned long long)work_bytes * (unsigned)o.threads;
+        fprintf(stderr, "%s: out of memory for a %dx%d frame (%llu MiB)\n", app_name, o.width,
+                o.height, (need + (1 << 20) - 1) >> 20);
+        if (fc_ok)
+            frame_free(&fc);
         free(traced);
-        return rc;
+        plat_frame_release(&frame);
+        return 1;
     }
-    rt_stats stats = {0};
+
+    int progress = o.progress || (o.have_frames && isatty(2));
+    app_sums sums = {0};
+    rt_view view;
+    uint64_t us = 0, start = app_us();
 #if FX_COUNT_EVENTS
     fx_events_reset();
 #endif
-    uint64_t t0 = plat_time_ns();
-    rt_render(&scene, &view, &params, frame.pixels, frame.stride, &stats, work, traced);
-    uint64_t us = (plat_time_ns() - t0) / 1000u;
-    if (traced)
-        for (int y = 0; y < o.height; y++)
-            for (int x = 0; x < o.width; x++)
-                if (traced[(long)y * o.width + x])
-                    frame.pixels[(long)y * frame.stride + x] = 0xFFFFFF;
-    free(work);
+    for (long i = 0; i < nframes && rc == 0; i++) {
+        long f = o.first + i * o.step;
+        int32_t t = o.have_frames ? (int32_t)(f * 1000 / desc->fps) : o.time_ms;
+        scn_eval(desc, t, &scene);
+        if (o.effects_all)
+            rt_scene_force_effects(&scene);
+        params.depth = o.depth >= 0 ? o.depth : scene.depth;
+        rt_view_init(&view, &scene.camera, o.width, o.height);
+        rt_stats stats = {0};
+        uint64_t t0 = app_us();
+        frame_render(&fc, &scene, &view, &params, frame.pixels, frame.stride, &stats, traced);
+        us += app_us() - t0;
+        app_add(&sums, &stats);
+        if (traced)
+            for (int y = 0; y < o.height; y++)
+                for (int x = 0; x < o.width; x++)
+                    if (traced[(long)y * o.width + x])
+                        frame.pixels[(long)y * frame.stride + x] = 0xFFFFFF;
+        if (o.checksum) {
+            if (f >= 0)
+                printf("frame=%ld ", f);
+            printf("time_ms=%ld fnv64=%016llx\n", (long)t, app_fnv(&frame));
+        }
+        if (o.output) {
+            if (o.have_frames)
+                app_expand(o.output, f, out, sizeof out);
+            if (plat_frame_present(&frame, o.have_frames ? out : o.output) != 0)
+                rc = 1;
+        }
+        if (progress) {
+            uint64_t el = app_us() - start + 1;
+            unsigned long long fps10 = (unsigned long long)(i + 1) * 10000000u / el;
+            unsigned long long left = el * (unsigned long long)(nframes - i - 1) / (i + 1) / 1000000u;
+            fprintf(stderr, "\r%s: frame %ld (%ld of %ld, %ld%%), %llu.%llu frames/s, %llu s left  ",
+                    app_name, f >= 0 ? f : 0, i + 1, nframes, (i + 1) * 100 / nframes,
+                    fps10 / 10, fps10 % 10, left);
+            if (i + 1 == nframes || rc != 0)
+                fputc('\n', stderr);
+        }
+    }
+    frame_free(&fc);
     free(traced);
-    rc = plat_frame_present(&frame, o.output) == 0 ? 0 : 1;
     plat_frame_release(&frame);
     if (rc != 0)
         return rc;
-
-    if (o.stats) {
-        printf("real=%s\nscene=%s\nsize=%dx%d\ntime_ms=%ld\ndepth=%d\n", APP_REAL, scene_name,
-               o.width, o.height, (long)o.time_ms, params.depth);
-        static const char *const fx_names[] = {"shadow", "specular", "reflect", "refract",
-                                               "texture", "noise"};
-        printf("effects=");
-        for (int b = 0, n = 0; b < 6; b++)
-            if (scene.effects & (1u << b))
-                printf("%s%s", n++ ? "," : "", fx_names[b]);
-        printf("%s\n", scene.effects ? "" : "none");
-        printf("reach_depth=%d\n", params.depth < scene.reach_depth ? params.depth : scene.reach_depth);
-        printf("mode=%s\n", o.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
-        if (o.mode == RT_MODE_ADAPTIVE)
-            printf("grid=%d\nthreshold=%ld.%04ld\n", o.grid, o.threshold / APP_SCALE,
-                   o.threshold % APP_SCALE);
-        printf("min_contrib=%ld.%04ld\n", o.min_contrib / APP_SCALE, o.min_contrib % APP_SCALE);
-        printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000),
-               (unsigned long long)(us % 1000));
-        printf("pixels=%ld\n", (long)o.width * o.height);
-        printf("samples_traced=%lu\n", (unsigned long)stats.rays_primary);
-        printf("rays_primary=%lu\nrays_shadow=%lu\nrays_reflect=%lu\nrays_refract=%lu\n",
-               (unsigned long)stats.rays_primary, (unsigned long)stats.rays_shadow,
-               (unsigned long)stats.rays_reflect, (unsigned long)stats.rays_refract);
-        printf("shadow_tests=%lu\n", (unsigned long)stats.shadow_tests);
-        if (o.mode == RT_MODE_ADAPTIVE) {
-            for (int l = 0, size = o.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
-                printf("squares_%d=%lu\nsplit_%d=%lu\n", size, (unsigned long)stats.squares[l],
-                       size, (unsigned long)stats.split[l]);
-            printf("split_object=%lu\nsplit_light=%lu\nsplit_secondary=%lu\nsplit_contrib=%lu\n",
-                   (unsigned long)stats.split_by[RT_SPLIT_OBJECT],
-                   (unsigned long)stats.split_by[RT_SPLIT_LIGHT],
-                   (unsigned long)stats.split_by[RT_SPLIT_SECONDARY],
-                   (unsigned long)stats.split_by[RT_SPLIT_CONTRIB]);
-            printf("work_bytes=%lu\n", work_bytes);
-        }
-#if FX_COUNT_EVENTS
-        printf("fx_overflow=%lu\nfx_domain=%lu\nfx_nonfinite=%lu\n",
-               fx_event_count[FX_EV_OVERFLOW], fx_event_count[FX_EV_DOMAIN],
-               fx_event_count[FX_EV_NONFINITE]);
-#endif
-    }
-    fprintf(stderr, "%s: wrote %s (%dx%d, %s)\n", app_name, o.output, o.width, o.height, APP_REAL);
+    if (o.stats)
+        app_print_stats(&o, scene_name, &scene, &params, nframes, &sums, us, work_bytes);
+    if (o.have_frames)
+        fprintf(stderr, "%s: rendered %ld frames (%ld-%ld, step %ld) of %s%s%s (%dx%d, %s)\n",
+                app_name, nframes, o.first, o.last, o.step, scene_name, o.output ? " to " : "",
+                o.output ? o.output : "", o.width, o.height, APP_REAL);
+    else if (o.output)
+        fprintf(stderr, "%s: wrote %s (%dx%d, %s)\n", app_name, o.output, o.width, o.height,
+                APP_REAL);
     return 0;
 }
 
@@ -372,7 +675,8 @@ int app_main(int argc, char **argv)
         app_name = slash ? slash + 1 : argv[0];
     }
     if (argc < 2) {
-        app_usage(stderr);
+        fprintf(stderr, "%s: no command given (usage: %s render|play [options]; see %s --help)\n",
+                app_name, app_name, app_name);
         return 2;
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
@@ -381,7 +685,9 @@ int app_main(int argc, char **argv)
     }
     if (strcmp(argv[1], "render") == 0)
         return app_render(argc - 2, argv + 2);
-    fprintf(stderr, "%s: unknown command '%s' (commands: render; see %s --help)\n", app_name,
+    if (strcmp(argv[1], "play") == 0)
+        return app_play(argc - 2, argv + 2);
+    fprintf(stderr, "%s: unknown command '%s' (commands: render, play; see %s --help)\n", app_name,
             argv[1], app_name);
     return 2;
 }

@@ -10,8 +10,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Refuse images larger than this (pixels) rather than exhausting memory. */
-#define IMG_MAX_PIXELS (64L * 1024 * 1024)
+/* Refuse images larger than this (pixels) rather than exhausting memory: the largest frame
+ * the renderers write (4096 x 4096), 48 MiB of RGB. */
+#define IMG_MAX_SIDE 4096L
+#define IMG_MAX_PIXELS (IMG_MAX_SIDE * IMG_MAX_SIDE)
 
 static int img_fail(char *err, size_t errlen, const char *fmt, const char *a, const char *b)
 {
@@ -81,8 +83,14 @@ static int img_load_ppm(FILE *f, const char *path, img_rgb *out, char *err, size
     if (maxval != 255)
         return img_fail(err, errlen, "%s: PPM maxval must be 255 (8-bit)%s", path, "");
     if (w * h > IMG_MAX_PIXELS)
-        return img_fail(err, errlen, "%s: image too large%s", path, "");
+        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path, "");
     size_t n = (size_t)w * (size_t)h * 3;
+    /* The header promises n bytes: a file that has fewer is refused before allocating them. */
+    struct stat st;
+    long at = ftell(f);
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode) && at >= 0 &&
+        (unsigned long long)st.st_size - (unsigned long long)at < n)
+        return img_fail(err, errlen, "%s: PPM data is truncated%s", path, "");
     out->rgb = malloc(n);
     if (!out->rgb)
         return img_fail(err, errlen, "%s: out of memory%s", path, "");
@@ -104,7 +112,7 @@ static int img_load_png(const char *path, img_rgb *out, char *err, size_t errlen
         return img_fail(err, errlen, "%s: bad PNG: %s", path, image.message);
     if ((long)image.width * (long)image.height > IMG_MAX_PIXELS) {
         png_image_free(&image);
-        return img_fail(err, errlen, "%s: image too large%s", path, "");
+        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path, "");
     }
     image.format = PNG_FORMAT_RGB;
     out->rgb = malloc(PNG_IMAGE_SIZE(image));
@@ -130,6 +138,11 @@ int img_load(const char *path, img_rgb *out, char *err, size_t errlen)
     unsigned char magic[8] = {0};
     size_t got = fread(magic, 1, sizeof magic, f);
     int rc;
+    if (ferror(f)) {
+        int e = errno;
+        fclose(f);
+        return img_fail(err, errlen, "%s: cannot read: %s", path, strerror(e));
+    }
     if (got >= 8 && png_sig_cmp(magic, 0, 8) == 0) {
         fclose(f);
         return img_load_png(path, out, err, errlen);

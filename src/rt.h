@@ -214,7 +214,13 @@ static inline int rt_scene_has(const rt_scene *s, unsigned e)
     return (s->effects & (RT_COMPILED_EFFECTS) & e) != 0;
 }
 
-/* Sets up the primary-ray frame for an image of width x height pixels. */
+/* 0 when the camera has no view direction: its eye and the point it looks at coincide (an
+ * animated camera can get there between keys). Such a view cannot be set up. */
+int rt_view_ok(const rt_camera *cam);
+
+/* Sets up the primary-ray frame for an image of width x height pixels. Without rt_view_ok(cam)
+ * the camera looks down -z; an up vector of zero, or along the view, is replaced by another
+ * axis. */
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
 
 /* Direction of the primary ray through the centre of pixel (x, y). */

@@ -14,8 +14,8 @@ static int scene_plane_occludes(const rt_scene *s, int pl, vec3 lp)
 {
     const rt_object *p = &s->objects[pl];
     real sl = scene_side(p, lp);
-    if (sl == 0)
-        return 1;
+    if (sl == 0) /* a light in the plane: any other object's shadow ray may graze it */
+        return s->nobjects > 1;
     for (int j = 0; j < s->nobjects; j++) {
         const rt_object *o = &s->objects[j];
         if (j == pl)
@@ -149,6 +149,11 @@ void rt_scene_prepare(rt_scene *s)
     scene_derive_effects(s);
 }
 
+int rt_view_ok(const rt_camera *cam)
+{
+    return cam->eye.x != cam->at.x || cam->eye.y != cam->at.y || cam->eye.z != cam->at.z;
+}
+
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
 {
     v->eye = cam->eye;
@@ -160,16 +165,20 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->fwd = (dir3){0, 0, u_neg(U_ONE)};
     if (!v3_is_zero(view))
         v->fwd = d3_norm(view, 0);
-    real sin_up = 0;
-    if (!v3_is_zero(cam->up))
-        v->right = d3_cross(v->fwd, d3_norm(cam->up, 0), &sin_up);
-    /* 2^-10, exact in both builds, so that both take the same branch */
-    if (sin_up < R(0.0009765625)) {
-        /* The up vector is (nearly) parallel to the view: any other axis will do. */
+    /* An up vector that is zero, or (nearly) parallel to the view, is replaced by another axis.
+     * Tested on the cosine before crossing, so that no zero cross product is normalised: the
+     * sine is below 2^-10 exactly when the squared cosine is above 1 - 2^-20 (exact in both
+     * builds, so that both take the same branch). */
+    int up_zero = v3_is_zero(cam->up);
+    dir3 up = up_zero ? v->fwd : d3_norm(cam->up, 0);
+    unit c = d3_dot(v->fwd, up);
+    if (up_zero || u_mul(c, c) > U(1.0 - 1.0 / 1048576)) {
         dir3 alt = {0, 0, U_ONE};
         if (v->fwd.z > U(0.5) || v->fwd.z < U(-0.5))
             alt = (dir3){U_ONE, 0, 0};
         v->right = d3_cross(v->fwd, alt, 0);
+    } else {
+        v->right = d3_cross(v->fwd, up, 0);
     }
     v->up = d3_cross(v->right, v->fwd, 0);
     unit sn, cs;

@@ -22,7 +22,7 @@ echo "bench: $scene at $size${extra[*]:+ (${extra[*]})}, sample times: $times s,
 for r in $(seq "$rounds"); do
   for t in $times; do
     for real in float fixed; do
-      ms=$(build/rt-$real render --scene "$scene" --size "$size" --time "$t" ${extra[@]+"${extra[@]}"} --stats -o "$out/f.ppm" 2>/dev/null | sed -n 's/^ms=//p')
+      ms=$(build/rt-$real render --threads 1 --scene "$scene" --size "$size" --time "$t" ${extra[@]+"${extra[@]}"} --stats -o "$out/f.ppm" 2>/dev/null | sed -n 's/^ms=//p')
       sum[$real]=$(awk -v a="${sum[$real]}" -v b="$ms" 'BEGIN { print a + b }')
       worst[$real]=$(awk -v a="${worst[$real]}" -v b="$ms" 'BEGIN { print (b > a ? b : a) }')
     done

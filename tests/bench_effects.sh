@@ -26,7 +26,7 @@ for scene in scenes/*.scene; do
       best_auto="" best_all=""
       for r in $(seq "$ROUNDS"); do
         for e in auto all; do
-          out=$($B/rt-$real render --scene "$scene" --time "$t" --size "$SIZE" --effects $e --stats -o "$T/eff.ppm" 2>/dev/null)
+          out=$($B/rt-$real render --threads 1 --scene "$scene" --time "$t" --size "$SIZE" --effects $e --stats -o "$T/eff.ppm" 2>/dev/null)
           m=$(sed -n 's/^ms=//p' <<<"$out")
           if [ $e = auto ]; then
             best_auto=$(awk -v a="$best_auto" -v b="$m" 'BEGIN { print (a == "" || b < a) ? b : a }')

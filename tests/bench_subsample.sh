@@ -45,7 +45,7 @@ for size in $sizes; do
       for real in float fixed; do
         for m in $modes; do
           # shellcheck disable=SC2046
-          s=$(build/rt-$real render --scene "$scene" --size "$size" --time "$t" $(opts $m) --stats \
+          s=$(build/rt-$real render --threads 1 --scene "$scene" --size "$size" --time "$t" $(opts $m) --stats \
                 -o "$out/$real-$m-$t.ppm" 2>/dev/null)
           v=$(sed -n 's/^ms=//p' <<<"$s")
           ms[$real,$m]=$(awk -v a="${ms[$real,$m]}" -v b="$v" 'BEGIN { print a + b }')

@@ -42,6 +42,18 @@ for real in fixed float; do
   done
 done
 
+# The intro player (build/intro-*) shows the same frames.
+for real in fixed float; do
+  shot=$T/intro-$real.png
+  if xrun "$B/intro-$real" --frames 8 --size 320x240 --screenshot "$shot" >"$T/intro-$real.log" 2>&1 &&
+      "$B/rt-$real" render --frame 7 -o "$T/render-$real-7.png" 2>/dev/null &&
+      grep -q 'differing=0 ' <<<"$("$B/rt-cmp" "$shot" "$T/render-$real-7.png" 2>&1)"; then
+    pass "build/intro-$real --frames 8 under Xvfb: screenshot = render --frame 7"
+  else
+    fail "build/intro-$real --frames 8: $(tail -2 "$T/intro-$real.log" | tr '\n' ' ')"
+  fi
+done
+
 # Threads: 1 thread and several give the same bytes, both builds, both modes, several frames.
 for real in fixed float; do
   bad=""

@@ -122,7 +122,7 @@ if [ -z "$missing" ] && grep -q '^pixels=4800$' <<<"$stats" && grep -q '^samples
 else
   fail "--stats (full mode) output lacks:$missing"
 fi
-stats=$($B/rt-fixed render $DEMO --size 320x240 --time 3 --stats -o "$T/stats-ad.ppm" 2>/dev/null)
+stats=$($B/rt-fixed render $DEMO --threads 1 --size 320x240 --time 3 --stats -o "$T/stats-ad.ppm" 2>/dev/null)
 missing=""
 for key in samples_traced rays_primary rays_shadow rays_reflect rays_refract squares_8 split_8 \
            squares_4 split_4 squares_2 split_2 split_object split_light split_secondary \
@@ -153,6 +153,37 @@ else
   fail "--depth 0 still casts secondary rays"
 fi
 
+# ---- several frames in one process: --frames, --step, -o pattern, --checksum -----------------------
+# Each frame of a multi-frame render is byte for byte the frame a single render gives (no state
+# carries over from one frame to the next), and --checksum prints the same hash for it.
+for real in fixed float; do
+  mf=$($B/rt-$real render --frames 0-1200 --step 300 --size 96x72 -o "$T/mf-$real-%04d.ppm" --checksum --stats 2>"$T/mf-$real.err")
+  bad=""
+  grep -q '^frames=5$' <<<"$mf" || bad="$bad no frames=5 in --stats;"
+  for f in 0 300 600 900 1200; do
+    one=$($B/rt-$real render --frame $f --size 96x72 -o "$T/sf-$real.ppm" --checksum 2>/dev/null)
+    cmp -s "$T/sf-$real.ppm" "$T/mf-$real-$(printf %04d $f).ppm" || bad="$bad frame $f differs from a single render;"
+    grep -qx -- "$one" <<<"$mf" || bad="$bad checksum of frame $f ($one) not in the run;"
+  done
+  if [ -z "$bad" ] && [ "$(ls "$T"/mf-$real-*.ppm | wc -l)" = 5 ]; then
+    pass "rt-$real --frames 0-1200 --step 300: 5 files, each identical to a single render of its frame, same checksums"
+  else
+    fail "rt-$real --frames:$bad $(cat "$T/mf-$real.err")"
+  fi
+done
+# --checksum alone writes no file; the checksum is the 64-bit FNV-1a of the PPM's raster bytes
+(cd "$T" && ../rt-fixed render --size 40x30 --checksum >/dev/null 2>&1)
+sum=$($B/rt-fixed render --size 40x30 --time 2 --checksum -o "$T/ck.ppm" 2>/dev/null)
+# FNV-1a in bash's 64-bit arithmetic (it wraps) over the raster: the bytes after "P6\n40 30\n255\n"
+h=$((0xcbf29ce484222325))
+for byte in $(tail -c +14 "$T/ck.ppm" | od -An -v -tu1); do h=$(( (h ^ byte) * 0x100000001b3 )); done
+want=$(printf '%016x' $h)
+if [ ! -e "$T/frame.png" ] && [ "$sum" = "time_ms=2000 fnv64=$want" ]; then
+  pass "--checksum: $sum is the FNV-1a of the PPM raster; without -o no file is written"
+else
+  fail "--checksum printed '$sum' (want fnv64=$want), or wrote frame.png without -o"
+fi
+
 # ---- rt-cmp ---------------------------------------------------------------------------------------
 line=$($B/rt-cmp "$T/det1-fixed.png" "$T/det1-fixed.ppm")
 if [ "$line" = "psnr_db=inf max_abs=0 differing=0 over8=0 pixels=30000" ]; then
@@ -176,39 +207,64 @@ expect_error() { # expected-status message-pattern command...
   fi
 }
 R=$B/rt-fixed
-expect_error 2 "unknown option" $R render $DEMO --bogus
-expect_error 2 "unknown command" $R draw
-expect_error 2 "expected WxH" $R render $DEMO --size 0x10 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render $DEMO --size 640 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render $DEMO --size 5000x100 -o "$T/x.png"
-expect_error 2 "expected WxH" $R render $DEMO --size -3x4 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render $DEMO --time -1 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render $DEMO --time 1.2345 -o "$T/x.png"
-expect_error 2 "expected seconds" $R render $DEMO --time abc -o "$T/x.png"
-expect_error 2 "expected a frame number" $R render $DEMO --frame 1e3 -o "$T/x.png"
-expect_error 2 "expected a recursion limit" $R render $DEMO --depth 9 -o "$T/x.png"
-expect_error 2 "either --time or --frame" $R render $DEMO --time 1 --frame 2 -o "$T/x.png"
-expect_error 2 "expected full or adaptive" $R render $DEMO --mode fast -o "$T/x.png"
-expect_error 2 "expected a square size" $R render $DEMO --grid 3 -o "$T/x.png"
-expect_error 2 "expected a square size" $R render $DEMO --grid 32 -o "$T/x.png"
-expect_error 2 "expected a square size" $R render $DEMO --grid 1 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render $DEMO --threshold 1.5 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render $DEMO --threshold -0.1 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render $DEMO --min-contrib 0.00001 -o "$T/x.png"
-expect_error 2 "expected a number in 0..1" $R render $DEMO --min-contrib abc -o "$T/x.png"
-expect_error 2 "needs a value" $R render $DEMO --grid
-expect_error 2 "needs a value" $R render $DEMO -o
-expect_error 2 ".png or .ppm" $R render $DEMO -o "$T/x.jpg"
-expect_error 1 "cannot write" $R render $DEMO --size 8x8 -o "$T/no/such/dir/x.png"
-mkdir -p "$T/adir.png"
-expect_error 1 "cannot write" $R render $DEMO --size 8x8 -o "$T/adir.png"
-if ls "$T"/adir.png.tmp-* >/dev/null 2>&1; then fail "a temporary file was left behind"; else pass "no temporary file left behind after a failed write"; fi
-printf 'P6\n2 2\n255\nabc' >"$T/short.ppm"
-expect_error 2 "truncated" $B/rt-cmp "$T/short.ppm" "$T/det1-fixed.ppm"
-expect_error 2 "cannot open" $B/rt-cmp "$T/missing.png" "$T/det1-fixed.ppm"
-echo "not an image" >"$T/text.png"
-expect_error 2 "bad PNG\|not a PNG" $B/rt-cmp "$T/text.png" "$T/det1-fixed.ppm"
-expect_error 2 "sizes differ" $B/rt-cmp "$T/stats.png" "$T/det1-fixed.png"
+# The table of bad command lines: tests/bad_cli.txt (its header says what each case must do).
+W=$PWD/$T/cli
+mkdir -p "$W/adir.png"
+$R render --size 8x8 -o "$W/one.ppm" 2>/dev/null
+$R render --size 16x8 -o "$W/two.ppm" 2>/dev/null
+printf 'P6\n2 2\n255\nabc' >"$W/short.ppm"
+printf 'P6\n4000 4000\n255\n' >"$W/big.ppm"
+printf 'P6\n5000 4000\n255\n' >"$W/huge.ppm"
+echo "not an image" >"$W/text.png"
+echo "sphre a material m center 0 0 0 radius 1" >"$W/bad.scene"
+printf '%s\n' "duration 2" "camera eye 0 1 5 at 0 1 0" "material m" \
+  "sphere s material m center 0 0 -3 radius 1" "key camera.eye 0 linear 0 1 5" \
+  "key camera.eye 1 linear 0 1 0" "key camera.eye 2 linear 0 1 -5" >"$W/eye.scene"
+listing() { (cd "$W" && find . -mindepth 1 -printf '%p %s %T@\n' | sort); }
+TOP=$PWD
+before=$(listing)
+ncli=0
+while IFS= read -r line; do
+  [[ -z $line || $line == \#* ]] && continue
+  want=${line#* => }
+  eval "args=(${line%% => *})"
+  case ${args[0]} in
+    RT) progs="rt-fixed rt-float san-fixed/rt san-float/rt" ;;
+    *) progs=${args[0]} ;;
+  esac
+  bad=""
+  for p in $progs; do
+    err=$(cd "$W" && "$TOP/$B/$p" "${args[@]:1}" 2>&1 >/dev/null </dev/null)
+    rc=$?
+    if [ $rc -ne 2 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || [[ "$err" != "$(basename "$p"): "* ]] ||
+       [[ "$err" != *"$want"* ]]; then
+      bad="$bad $p: exit $rc: $err;"
+    fi
+  done
+  now=$(listing)
+  [ "$now" = "$before" ] || { bad="$bad files changed: $(diff <(echo "$before") <(echo "$now") | grep '^[<>]' | tr '\n' ' ');"; before=$now; }
+  ncli=$((ncli + 1))
+  if [ -z "$bad" ]; then
+    [ -n "${VERBOSE:-}" ] && echo "       ${line%% => *}: $err"
+  else
+    fail "bad command line '${line%% => *}' (want exit 2, one line containing '$want'):$bad"
+  fi
+done <tests/bad_cli.txt
+pass "bad command lines: the $ncli cases of tests/bad_cli.txt, each one line and exit 2 (render cases from both builds and both sanitized builds), no file left behind"
+# A write that fails once rendering is done (here: a file size limit) gets exit status 1 and
+# leaves neither the file nor its temporary file behind, in single- and multi-frame renders.
+for args in "-o $W/limit.ppm" "--frames 0-2 -o $W/limit-%d.ppm"; do
+  err=$( (trap '' XFSZ; ulimit -f 1; $R render --size 64x48 $args) 2>&1 >/dev/null)
+  rc=$?
+  now=$(listing)
+  if [ $rc -eq 1 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && [[ "$err" == "rt-fixed: "*"cannot write: File too large" ]] &&
+     [ "$now" = "$before" ]; then
+    pass "failed write ($args, 1 KiB file size limit): exit 1, one line, nothing left behind: $err"
+  else
+    fail "failed write ($args): exit $rc: $err; files: $(diff <(echo "$before") <(echo "$now") | grep '^[<>]' | tr '\n' ' ')"
+    before=$now
+  fi
+done
 
 # ---- example scenes: fixed vs float, derived effects, no rays for unused effects ---------------
 # The effects each scene is written to use (docs/scene-format.md); checked at every moment rendered.
@@ -328,34 +384,91 @@ expect_error 2 "objects.scene:35:1: more than 32 objects" $R render --scene "$BA
 expect_error 2 "materials.scene:17:1: more than 16 materials" $R render --scene "$BAD/materials.scene"
 : >"$BAD/empty.scene"
 expect_error 2 "empty.scene:1:1: the scene has no camera" $R render --scene "$BAD/empty.scene"
-expect_error 2 "no/such.scene: cannot open" $R render --scene "$T/no/such.scene"
-expect_error 2 "cannot read" $R render --scene "$T"
 head -c 1100000 /dev/zero >"$BAD/huge.scene"
 expect_error 2 "larger than 1048576 bytes" $R render --scene "$BAD/huge.scene"
-expect_error 2 "past the end of scenes/demo.scene" $R render $DEMO --time 30 -o "$T/x.png"
-expect_error 2 "past the last frame of scenes/demo.scene (600 at 25 fps)" $R render $DEMO --frame 601 -o "$T/x.png"
-expect_error 2 "expected auto or all" $R render --effects some -o "$T/x.png"
-# rt-scenec: the same messages; never a half-written output
+# rt-scenec: the same messages (its other bad command lines are in tests/bad_cli.txt)
 expect_error 2 "case08.scene:2:19: undefined material 'glas'" $B/rt-scenec "$BAD/case08.scene" -o "$T/sc.c"
-expect_error 2 "cannot open" $B/rt-scenec "$T/none.scene" -o "$T/sc.c"
-expect_error 2 "no output given" $B/rt-scenec scenes/demo.scene
-expect_error 2 "not a C identifier" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --name 9lives
-expect_error 1 "cannot write" $B/rt-scenec scenes/demo.scene -o "$T/no/such/dir/sc.c"
-expect_error 1 "sc.h: cannot write" $B/rt-scenec scenes/demo.scene -o "$T/sc.c" --effects "$T/no/such/dir/sc.h"
-if ls "$T"/no/such/dir/sc.c* "$T"/sc.c >/dev/null 2>&1; then fail "rt-scenec left an output behind after errors"; else pass "rt-scenec leaves no output behind after errors"; fi
+# a write that fails half-way: exit 1, neither output nor a temporary file left behind
+mkdir -p "$T/scw"
+err=$( (trap '' XFSZ; ulimit -f 1; $B/rt-scenec scenes/intro.scene -o "$T/scw/sc.c" --effects "$T/scw/sc.h") 2>&1 >/dev/null)
+rc=$?
+if [ $rc -eq 1 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && [ -z "$(ls -A "$T/scw")" ]; then
+  pass "rt-scenec: a failed write (1 KiB file size limit) gets exit 1 and leaves nothing behind: $err"
+else
+  fail "rt-scenec failed write: exit $rc: $err; left: $(ls -A "$T/scw")"
+fi
 
-# ---- the ARM926 images under QEMU (tests/arm.sh, tests/arm_check.sh) ------------------------
-tests/arm.sh >"$T/arm.log" 2>&1
-arm_status=$?
-arm_failed=$failed
+# ---- the scene fuzzer: a bounded smoke run (make fuzz runs it longer) ----------------------------
+# tests/fuzz.sh replays every kept crash of tests/fuzz-regress/ first, then fuzzes each build from
+# the seeds; any crash, hang (10 s), leak, sanitizer report or numeric event fails.
 while IFS= read -r line; do
-  case "$line" in
-    "ok   "*) pass "${line#ok   }" ;;
-    "FAIL "*) fail "${line#FAIL }" ;;
+  case $line in
+    fuzz-*": "*"no crash"*) pass "$line" ;;
+    fuzz-*) fail "$line" ;;
     *) echo "       $line" ;;
   esac
-done <"$T/arm.log"
-[ "$arm_status" -eq 0 ] || [ "$failed" -gt "$arm_failed" ] || fail "tests/arm.sh exited with status $arm_status"
+done < <(tests/fuzz.sh "${FUZZ_SECONDS:-15}" --smoke 2>&1)
+# Each kept crash also goes through the programs themselves (scn_load, the render command) under
+# ASan + UBSan, at its start and its end: rendered, or refused with one line and exit 2.
+bad=""
+for f in tests/fuzz-regress/*.scene; do
+  for real in fixed float; do
+    for t in 0 "$(awk '$1 == "duration" { d = $2 } END { print d + 0 }' "$f")"; do
+      out=$($B/san-$real/rt render --scene "$f" --size 32x24 --time "$t" --stats -o "$T/regress.ppm" 2>"$T/regress.err")
+      rc=$?
+      if [ $rc -eq 0 ]; then
+        grep -q '^fx_overflow=0$' <<<"$out" && grep -q '^fx_domain=0$' <<<"$out" || bad="$bad $real $(basename "$f") $t: numeric events;"
+      elif [ $rc -ne 2 ] || [ "$(wc -l <"$T/regress.err")" -ne 1 ]; then
+        bad="$bad $real $(basename "$f") $t: exit $rc: $(head -3 "$T/regress.err");"
+      fi
+    done
+  done
+done
+if [ -z "$bad" ]; then
+  pass "the $(ls tests/fuzz-regress/*.scene | wc -l) kept fuzz inputs (tests/fuzz-regress/) render cleanly under ASan + UBSan in both builds, no numeric event"
+else
+  fail "kept fuzz inputs:$bad"
+fi
+
+# ---- soak: every frame of the intro, twice, both builds (tests/soak.sh; SOAK_STEP=N for a subset) -
+while IFS= read -r line; do
+  case $line in
+    *"identical passes, no growth") pass "$line" ;;
+    *) fail "$line" ;;
+  esac
+done < <(tests/soak.sh "${SOAK_STEP:-1}" 320x240 2>&1)
+
+# ---- valgrind memcheck: intro frames rendered and written by both -O2 builds -------------------
+# the float build reads the intro from its scene file, the fixed one uses the compiled-in copy
+for real in fixed float; do
+  scene=(); [ $real = float ] && scene=(--scene scenes/intro.scene)
+  if valgrind -q --error-exitcode=99 --leak-check=full --show-leak-kinds=definite,indirect,possible \
+       --errors-for-leak-kinds=definite,indirect,possible $B/rt-$real render "${scene[@]}" \
+       --frames 0-1200 --step 400 --size 160x120 -o "$T/vg-$real-%04d.png" --stats >/dev/null 2>"$T/vg-$real.log" &&
+     [ "$(ls "$T"/vg-$real-*.png | wc -l)" = 4 ] && ! grep -q '^==' "$T/vg-$real.log"; then
+    pass "valgrind memcheck: rt-$real renders and writes 4 intro frames (0-1200 step 400, 160x120) with no error and no leak"
+  else
+    fail "valgrind memcheck on rt-$real (see $T/vg-$real.log)"
+    grep '^==' "$T/vg-$real.log" | head -20 | sed 's/^/       /'
+  fi
+done
+
+# ---- scripts that print ok/FAIL lines: the player and threads, the ARM926 images under QEMU ----
+run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL line fails too
+  local log=$T/$(basename "$1" .sh).log st before=$failed line
+  "$1" >"$log" 2>&1
+  st=$?
+  while IFS= read -r line; do
+    case "$line" in
+      "ok   "*) pass "${line#ok   }" ;;
+      "FAIL "*) fail "${line#FAIL }" ;;
+      *) echo "       $line" ;;
+    esac
+  done <"$log"
+  [ "$st" -eq 0 ] || [ "$failed" -gt "$before" ] || fail "$1 exited with status $st"
+}
+run_part tests/play.sh
+run_part tests/arm.sh
 
 echo
 echo "$passed passed, $failed failed"

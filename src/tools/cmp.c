@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "image.h"
+#include "outpath.h"
 
 /* Each channel of the difference picture is |a - b| times this, clamped to 255. */
 #define CMP_DIFF_GAIN 16
@@ -43,15 +44,22 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (npath != 2)
-        return cmp_usage(stderr);
+    if (npath != 2) {
+        fprintf(stderr, "rt-cmp: expected two images, got %d (usage: rt-cmp A B [--diff D.png]; "
+                "see rt-cmp --help)\n", npath);
+        return 2;
+    }
+    char err[512];
     if (diff && !img_path_ok(diff)) {
         fprintf(stderr, "rt-cmp: %s: the difference picture must end in .png or .ppm\n", diff);
         return 2;
     }
+    if (diff && outpath_check(diff, err, sizeof err) != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        return 2;
+    }
 
     img_rgb a, b;
-    char err[512];
     if (img_load(path[0], &a, err, sizeof err) != 0) {
         fprintf(stderr, "rt-cmp: %s\n", err);
         return 2;
@@ -75,7 +83,7 @@ int main(int argc, char **argv)
     uint32_t *dpix = diff ? malloc((size_t)pixels * sizeof *dpix) : NULL;
     if (diff && !dpix) {
         fprintf(stderr, "rt-cmp: out of memory\n");
-        return 2;
+        return 1;
     }
     for (long i = 0; i < pixels; i++) {
         int worst = 0;
@@ -110,7 +118,7 @@ int main(int argc, char **argv)
     if (dpix) {
         if (img_save(diff, dpix, width, height, width, err, sizeof err) != 0) {
             fprintf(stderr, "rt-cmp: %s\n", err);
-            rc = 2;
+            rc = 1;
         }
         free(dpix);
     }

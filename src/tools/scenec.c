@@ -4,6 +4,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "outpath.h"
 #include "scn_parse.h"
 
 static const char *sc_name = "rt-scenec";
@@ -70,6 +71,11 @@ int main(int argc, char **argv)
     }
     static scn_file f;
     char err[512];
+    /* Outputs that cannot be created are refused before anything is done. */
+    if (outpath_check(out, err, sizeof err) != 0 || (hdr && outpath_check(hdr, err, sizeof err) != 0)) {
+        fprintf(stderr, "%s: %s\n", sc_name, err);
+        return 2;
+    }
     if (scn_load(in, &f, err, sizeof err) != 0) {
         fprintf(stderr, "%s: %s\n", sc_name, err);
         return 2;
