@@ -52,6 +52,11 @@ void plat_log(const char *line)
     fprintf(stderr, "%s\n", line);
 }
 
+const char *plat_program(void)
+{
+    return plat_name;
+}
+
 int main(int argc, char **argv)
 {
     if (argc > 0 && argv[0][0]) {

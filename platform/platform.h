@@ -38,6 +38,9 @@ uint64_t plat_time_ns(void);
 /* Writes one line of text (no newline in `line`) to the log: standard error, or the UART. */
 void plat_log(const char *line);
 
+/* ---- desktop only: the program's name, for messages (platform/headless.c) ------------------ */
+const char *plat_program(void);
+
 /* ---- desktop only: worker threads (platform/threads.c) ------------------------------------ */
 
 #define PLAT_MAX_THREADS 64

@@ -1,5 +1,7 @@
 /* sdl.c: the desktop display through SDL2: a resizable window (or full screen) that shows frames scaled to fit, and the player's keys. */
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include <SDL.h>
 
@@ -12,8 +14,25 @@ static int sdl_width, sdl_height;
 
 int plat_display_open(int width, int height, const char *title)
 {
+    /* Without an X or Wayland display SDL would fall back to an invisible (offscreen or dummy)
+     * driver and "play" to nobody: that is an error, unless SDL_VIDEODRIVER asks for it. */
+    int chosen = getenv("SDL_VIDEODRIVER") != NULL;
+    if (!chosen && !getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
+        fprintf(stderr, "%s: no display to play on (neither DISPLAY nor WAYLAND_DISPLAY is set)\n",
+                plat_program());
+        return -1;
+    }
+    if (!chosen) /* only the drivers of the display there is (no noise from probing others) */
+        SDL_SetHint(SDL_HINT_VIDEODRIVER, getenv("WAYLAND_DISPLAY") ? "wayland,x11" : "x11");
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-        fprintf(stderr, "error: no display: %s\n", SDL_GetError());
+        fprintf(stderr, "%s: no display to play on: %s\n", plat_program(), SDL_GetError());
+        return -1;
+    }
+    const char *driver = SDL_GetCurrentVideoDriver();
+    if (!chosen && driver && (strcmp(driver, "offscreen") == 0 || strcmp(driver, "dummy") == 0)) {
+        fprintf(stderr, "%s: no display to play on (SDL found only its '%s' driver)\n",
+                plat_program(), driver);
+        SDL_Quit();
         return -1;
     }
     /* Scaled frames are smoothed; the picture keeps its aspect ratio, with bars around it. */
@@ -26,7 +45,8 @@ int plat_display_open(int width, int height, const char *title)
         sdl_texture = SDL_CreateTexture(sdl_renderer, SDL_PIXELFORMAT_RGB888,
                                         SDL_TEXTUREACCESS_STREAMING, width, height);
     if (!sdl_texture) {
-        fprintf(stderr, "error: cannot open a %dx%d window: %s\n", width, height, SDL_GetError());
+        fprintf(stderr, "%s: cannot open a %dx%d window: %s\n", plat_program(), width, height,
+                SDL_GetError());
         plat_display_close();
         return -1;
     }
@@ -38,14 +58,15 @@ int plat_display_open(int width, int height, const char *title)
 int plat_display_show(const plat_frame *f)
 {
     if (!sdl_texture || f->width != sdl_width || f->height != sdl_height) {
-        fprintf(stderr, "error: no open display for a %dx%d frame\n", f->width, f->height);
+        fprintf(stderr, "%s: no open display for a %dx%d frame\n", plat_program(), f->width,
+                f->height);
         return -1;
     }
     /* SDL_PIXELFORMAT_RGB888 is 0x00RRGGBB in a 32-bit word: the tracer's own pixels. */
     if (SDL_UpdateTexture(sdl_texture, NULL, f->pixels, f->stride * (int)sizeof *f->pixels) != 0 ||
         SDL_RenderClear(sdl_renderer) != 0 ||
         SDL_RenderCopy(sdl_renderer, sdl_texture, NULL, NULL) != 0) {
-        fprintf(stderr, "error: cannot show a frame: %s\n", SDL_GetError());
+        fprintf(stderr, "%s: cannot show a frame: %s\n", plat_program(), SDL_GetError());
         return -1;
     }
     SDL_RenderPresent(sdl_renderer);
@@ -56,7 +77,8 @@ static void sdl_toggle_fullscreen(void)
 {
     int full = (SDL_GetWindowFlags(sdl_window) & SDL_WINDOW_FULLSCREEN_DESKTOP) != 0;
     if (SDL_SetWindowFullscreen(sdl_window, full ? 0 : SDL_WINDOW_FULLSCREEN_DESKTOP) != 0)
-        fprintf(stderr, "warning: cannot toggle full screen: %s\n", SDL_GetError());
+        fprintf(stderr, "%s: warning: cannot toggle full screen: %s\n", plat_program(),
+                SDL_GetError());
 }
 
 int plat_display_poll(void)

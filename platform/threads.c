@@ -72,7 +72,8 @@ void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx)
             break; /* without a way to stop them, no workers: one thread does it all */
         if (pthread_create(&th_ids[th_started + 1], NULL, th_main,
                            (void *)(intptr_t)(th_started + 1)) != 0) {
-            fprintf(stderr, "warning: could not start a worker thread; using %d\n", th_started + 1);
+            fprintf(stderr, "%s: warning: could not start a worker thread; using %d\n",
+                    plat_program(), th_started + 1);
             break;
         }
         th_started++;

@@ -72,7 +72,8 @@ int play_run(const play_opts *o)
     plat_frame f = {0};
     uint8_t *traced = malloc((size_t)o->width * (size_t)o->height);
     if (!traced || frame_init(&fc, o->threads, o->width) != 0) {
-        fprintf(stderr, "error: out of memory for a %dx%d player\n", o->width, o->height);
+        fprintf(stderr, "%s: out of memory for a %dx%d player\n", plat_program(), o->width,
+                o->height);
         free(traced);
         return 1;
     }
@@ -160,9 +161,9 @@ int play_run(const play_opts *o)
         uint64_t fps10 = (uint64_t)n * 10000000000u / (wall ? wall : 1);
         uint64_t mean100 = total_render / 10000u / (uint64_t)n, worst100 = total_worst / 10000u;
         fprintf(stderr,
-                "play: %ld frames in %lu.%02lu s (%lu.%lu fps shown); rendering %lu.%02lu ms/frame "
+                "%s: %ld frames in %lu.%02lu s (%lu.%lu fps shown); rendering %lu.%02lu ms/frame "
                 "mean, %lu.%02lu worst; %dx%d, %s, %d thread%s\n",
-                n, (unsigned long)(wall / 1000000000u), (unsigned long)(wall / 10000000u % 100),
+                plat_program(), n, (unsigned long)(wall / 1000000000u), (unsigned long)(wall / 10000000u % 100),
                 PLAY_TENTHS(fps10), (unsigned long)(mean100 / 100), (unsigned long)(mean100 % 100),
                 (unsigned long)(worst100 / 100), (unsigned long)(worst100 % 100), o->width,
                 o->height, PLAY_REAL, o->threads, o->threads == 1 ? "" : "s");

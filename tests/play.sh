@@ -21,6 +21,17 @@ if ! command -v xvfb-run >/dev/null; then
 fi
 xrun() { xvfb-run -a -s "-screen 0 1024x768x24" "$@"; }
 
+# No display: one line and exit status 1, not an invisible player.
+for real in fixed float; do
+  msg=$(env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$B/rt-$real" play --frames 2 2>&1)
+  st=$?
+  if [ $st -eq 1 ] && [ "$(wc -l <<<"$msg")" -eq 1 ] && grep -q "no display to play on" <<<"$msg"; then
+    pass "rt-$real play without a display: exit 1, one line: $msg"
+  else
+    fail "rt-$real play without a display: exit $st: $msg"
+  fi
+done
+
 # Scripted play: N frames, one frame period each, then the last frame shown as a screenshot;
 # it must equal the headless render of that frame (frame N - 1) at the same size.
 for real in fixed float; do
