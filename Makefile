@@ -163,7 +163,7 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # The intro in a window and nothing else (src/player.c over play.c). Built for size: unused
 # functions dropped, no unwind tables, the hot tracer at -O2 and the rest at -Os.
 PLAYER_HOT := fixed/fx.c src/trace.c src/shapes.c src/subsample.c src/noise.c src/texture.c
-PLAYER_COLD := src/scene.c src/render.c src/scn.c src/play.c src/frame.c src/image.c src/player.c \
+PLAYER_COLD := src/scene.c src/render.c src/scn.c src/play.c src/frame.c src/image.c src/player.c src/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector

@@ -43,7 +43,8 @@ enum { FX_EV_OVERFLOW, FX_EV_DOMAIN, FX_EV_NONFINITE, FX_EV_COUNT };
 extern unsigned long fx_event_count[FX_EV_COUNT];
 /* Resets the event counters to zero. */
 void fx_events_reset(void);
-#define FX_EVENT(k) ((void)++fx_event_count[k])
+/* Atomic: bands of a frame may run on several threads. */
+#define FX_EVENT(k) ((void)__atomic_fetch_add(&fx_event_count[k], 1, __ATOMIC_RELAXED))
 #else
 #define FX_EVENT(k) ((void)0)
 #endif

@@ -56,7 +56,8 @@ void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx);
 
 /* What the player's keys ask for. */
 enum plat_key { PLAT_KEY_NONE, PLAT_KEY_QUIT, PLAT_KEY_PAUSE, PLAT_KEY_SAMPLES, PLAT_KEY_BACK,
-                PLAT_KEY_FORWARD, PLAT_KEY_GRID };
+                PLAT_KEY_FORWARD, PLAT_KEY_GRID,
+                PLAT_KEY_REDRAW /* not a key: the window needs its picture again */ };
 
 /* Opens a resizable window showing frames of width x height, scaled to fit (F toggles full
  * screen). Returns 0, or -1 after printing a one-line error (no display). */
@@ -65,8 +66,9 @@ int plat_display_open(int width, int height, const char *title);
 /* Shows a frame of the size the display was opened with (plat_frame_present with no file). */
 int plat_display_show(const plat_frame *f);
 
-/* The next key pressed (enum plat_key), or PLAT_KEY_NONE; never waits. */
-int plat_display_poll(void);
+/* The next key pressed (enum plat_key), or PLAT_KEY_NONE after waiting up to wait_ms
+ * milliseconds for one (0: never waits). */
+int plat_display_poll(int wait_ms);
 
 /* A status line: the window title. */
 void plat_display_status(const char *text);

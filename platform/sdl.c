@@ -81,12 +81,15 @@ static void sdl_toggle_fullscreen(void)
                 SDL_GetError());
 }
 
-int plat_display_poll(void)
+int plat_display_poll(int wait_ms)
 {
     SDL_Event e;
-    while (SDL_PollEvent(&e)) {
+    while (wait_ms > 0 ? SDL_WaitEventTimeout(&e, wait_ms) : SDL_PollEvent(&e)) {
         if (e.type == SDL_QUIT)
             return PLAT_KEY_QUIT;
+        if (e.type == SDL_WINDOWEVENT && (e.window.event == SDL_WINDOWEVENT_EXPOSED ||
+                                          e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED))
+            return PLAT_KEY_REDRAW;
         if (e.type != SDL_KEYDOWN)
             continue;
         switch (e.key.keysym.sym) {

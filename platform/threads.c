@@ -1,5 +1,7 @@
 /* threads.c: the desktop's worker threads (POSIX): a small pool, started on first use, that runs one job on several workers and waits for all of them. */
+#define _GNU_SOURCE /* sched_getaffinity, CPU_COUNT */
 #include <pthread.h>
+#include <sched.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +20,7 @@ static void (*th_job)(void *ctx, int worker);
 static void *th_ctx;
 static int th_quit; /* set at exit: the workers return */
 static pthread_t th_ids[PLAT_MAX_THREADS];
+static int th_limit = PLAT_MAX_THREADS; /* lowered when the system refuses a thread */
 
 static void *th_main(void *arg)
 {
@@ -58,15 +61,19 @@ static void th_stop(void)
 
 int plat_cpu_count(void)
 {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    /* The processors this process may run on (its affinity mask, e.g. under taskset or a
+     * container's cpuset), not all of the machine's. */
+    cpu_set_t set;
+    long n = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set)
+                                                          : sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > PLAT_MAX_THREADS ? PLAT_MAX_THREADS : (int)n;
 }
 
 void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx)
 {
-    if (threads > PLAT_MAX_THREADS)
-        threads = PLAT_MAX_THREADS;
     pthread_mutex_lock(&th_lock);
+    if (threads > th_limit)
+        threads = th_limit;
     while (th_started < threads - 1) {
         if (th_started == 0 && atexit(th_stop) != 0)
             break; /* without a way to stop them, no workers: one thread does it all */
@@ -74,6 +81,7 @@ void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx)
                            (void *)(intptr_t)(th_started + 1)) != 0) {
             fprintf(stderr, "%s: warning: could not start a worker thread; using %d\n",
                     plat_program(), th_started + 1);
+            th_limit = th_started + 1; /* said once: later jobs use what there is */
             break;
         }
         th_started++;

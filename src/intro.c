@@ -88,6 +88,14 @@ static long intro_arg(const char *s, long max)
     return v;
 }
 
+static unsigned intro_len(const char *s)
+{
+    unsigned n = 0;
+    while (s[n])
+        n++;
+    return n;
+}
+
 static int intro_streq(const char *a, const char *b)
 {
     while (*a && *a == *b)
@@ -201,6 +209,10 @@ static int intro_frames(int argc, char **argv)
                 return 2;
             }
             prefix = argv[i];
+            if (intro_len(prefix) > 100) { /* the name gets "-NNNN.ppm" and ".tmp" */
+                plat_log("intro: error: --out: the path prefix is longer than 100 characters");
+                return 2;
+            }
         } else if (intro_arg(argv[i], last) < 0) {
             intro_log2("intro: error: frame numbers are whole numbers 0..", (uint64_t)last,
                        NULL, 0);

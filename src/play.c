@@ -96,11 +96,17 @@ int play_run(const play_opts *o)
     play_clock clk = {.duration_ms = o->desc->duration_ms, .base_ns = plat_time_ns()};
     uint64_t status_ns = clk.base_ns, status_frames = 0, status_render = 0, status_worst = 0;
     uint64_t total_render = 0, total_worst = 0, start_ns = clk.base_ns;
-    long n = 0;
-    int quit = 0;
+    long n = 0, last_frame = (long)o->desc->duration_ms * o->desc->fps / 1000;
+    int quit = 0, shown = 0; /* shown: the paused picture is on screen, nothing changed since */
     while (!quit) {
+        /* Paused and already shown: wait for a key rather than render the same frame again. */
+        int idle = clk.paused && shown && o->frames == 0;
+        int key = plat_display_poll(idle ? 100 : 0);
+        if (idle && key == PLAT_KEY_NONE)
+            continue;
+        shown = 0;
         uint64_t now = plat_time_ns();
-        for (int key; (key = plat_display_poll()) != PLAT_KEY_NONE;) {
+        for (; key != PLAT_KEY_NONE; key = plat_display_poll(0)) {
             int64_t pos = play_position(&clk, now);
             if (key == PLAT_KEY_QUIT)
                 quit = 1;
@@ -117,9 +123,9 @@ int play_run(const play_opts *o)
         if (quit)
             break;
         /* Scripted runs step exactly one frame period per frame; otherwise the clock rules. */
-        int64_t ms = o->frames > 0 ? (int64_t)n * 1000 / o->desc->fps : play_position(&clk, now);
-        if (ms > clk.duration_ms)
-            ms = play_wrap(ms, clk.duration_ms);
+        /* Scripted runs loop over the scene's frames 0 .. last_frame, as render --frame does. */
+        int64_t ms = o->frames > 0 ? (int64_t)(n % (last_frame + 1)) * 1000 / o->desc->fps
+                                   : play_position(&clk, now);
         scn_eval(o->desc, (int32_t)ms, &scene);
         if (o->params.depth < 0)
             p.depth = scene.depth;
@@ -138,6 +144,7 @@ int play_run(const play_opts *o)
             rc = 1;
             break;
         }
+        shown = 1;
         n++;
         status_frames++;
         status_render += dt;

@@ -3,6 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "image.h"
+#include "outpath.h"
 #include "platform.h"
 #include "play.h"
 
@@ -20,6 +22,17 @@ static long player_int(const char *opt, const char *s, long lo, long hi)
         return -1;
     }
     return v;
+}
+
+/* A side of --size: digits only, 1..4096; the character after it in *end. */
+static int player_side(const char *s, const char **end)
+{
+    long v = 0;
+    const char *p = s;
+    while (*p >= '0' && *p <= '9' && v <= 4096)
+        v = v * 10 + (*p++ - '0');
+    *end = p;
+    return p > s && v >= 1 && v <= 4096 ? (int)v : -1;
 }
 
 int app_main(int argc, char **argv)
@@ -42,15 +55,18 @@ int app_main(int argc, char **argv)
                    player_name, REAL_FIXED ? "fixed" : "float");
             return 0;
         }
-        int w, h;
-        char tail;
-        if (!v) {
-            fprintf(stderr, "%s: %s: unknown option or missing value (see %s --help)\n", player_name, a, player_name);
+        int known = strcmp(a, "--size") == 0 || strcmp(a, "--threads") == 0 ||
+                    strcmp(a, "--frames") == 0 || strcmp(a, "--screenshot") == 0;
+        if (!v || !known) {
+            fprintf(stderr, "%s: %s: %s (see %s --help)\n", player_name, a,
+                    known ? "needs a value" : "unknown option", player_name);
             return 2;
         }
         i++;
         if (strcmp(a, "--size") == 0) {
-            if (sscanf(v, "%d%*[x]%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 4096 || h > 4096) {
+            const char *e;
+            int w = player_side(v, &e), h = *e == 'x' ? player_side(e + 1, &e) : -1;
+            if (w < 0 || h < 0 || *e) {
                 fprintf(stderr, "%s: --size: '%s' is not WxH with sides 1..4096\n", player_name, v);
                 return 2;
             }
@@ -65,6 +81,16 @@ int app_main(int argc, char **argv)
             if ((o.frames = player_int(a, v, 1, 100000000)) < 0)
                 return 2;
         } else if (strcmp(a, "--screenshot") == 0) {
+            char err[600];
+            if (!img_path_ok(v)) {
+                fprintf(stderr, "%s: --screenshot: the file must end in .png or .ppm, got '%s'\n",
+                        player_name, v);
+                return 2;
+            }
+            if (outpath_check(v, err, sizeof err) != 0) {
+                fprintf(stderr, "%s: %s\n", player_name, err);
+                return 2;
+            }
             o.screenshot = v;
         } else {
             fprintf(stderr, "%s: %s: unknown option (see %s --help)\n", player_name, a, player_name);

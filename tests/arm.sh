@@ -44,7 +44,8 @@ for n in "${FRAMES[@]}"; do
   cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" && same=$((same + 1))
 done
 [ "$same" -eq ${#FRAMES[@]} ] && pass "arm: fixed frames ${FRAMES[*]} bit-identical to the host's rt-fixed, in both runs"
-if [ -s "$T/fixed-1.log" ] && diff <(grep '^frame=' "$T/fixed-1.log") <(grep '^frame=' "$T/fixed-2.log") >/dev/null; then
+if [ "$(grep -c '^frame=' "$T/fixed-1.log")" -eq ${#FRAMES[@]} ] &&
+   diff <(grep '^frame=' "$T/fixed-1.log") <(grep '^frame=' "$T/fixed-2.log") >/dev/null; then
   pass "arm: two runs give identical instruction counts ($(grep '^frame=' "$T/fixed-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
 else
   fail "arm: instruction counts differ between two runs"
@@ -78,6 +79,27 @@ else
   fail "arm: bench fixed 0 1200 50: $(tail -2 "$T/bench.log" | tr '\n' ' ')"
 fi
 
+# A CPU exception ends the run through the vectors with status 3 and a line naming it, instead
+# of restarting the program (tests/arm_fault.c on the same start-up code and backend).
+AO=$B/obj/arm-fixed
+ARM="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
+if arm-none-eabi-gcc -std=c11 -O2 $ARM -ffreestanding -Iplatform -c tests/arm_fault.c -o "$T/arm_fault.o" &&
+   arm-none-eabi-gcc $ARM -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
+     -Wl,--no-warn-rwx-segments -o "$T/arm_fault.elf" "$T/arm_fault.o" "$AO/start.o" "$AO/platform/arm/arm.o" -lc -lgcc; then
+  timeout --foreground -k 5 30 qemu-system-arm -M versatilepb -m 2 -display none -serial stdio -monitor none \
+    -audiodev none,id=snd0 -global pl041.audiodev=snd0 -semihosting-config enable=on,target=native,arg=fault \
+    -kernel "$T/arm_fault.elf" </dev/null >"$T/fault.log" 2>&1
+  st=$?
+  if [ $st -eq 3 ] && grep -q '^error: CPU exception: undefined instruction' "$T/fault.log" &&
+     [ "$(grep -c 'executing an undefined' "$T/fault.log")" -eq 1 ]; then
+    pass "arm: an undefined instruction ends the run with status 3: $(grep '^error' "$T/fault.log")"
+  else
+    fail "arm: undefined instruction: status $st, $(tr '\n' ' ' <"$T/fault.log" | cut -c1-200)"
+  fi
+else
+  fail "arm: could not build tests/arm_fault.c"
+fi
+
 # The display: the PL110 shows a frame exactly as rendered (QEMU's screendump through the monitor).
 n=875
 rm -f "$T/serial.log" "$T/screen.ppm"
@@ -86,7 +108,7 @@ rm -f "$T/serial.log" "$T/screen.ppm"
   echo "screendump $T/screen.ppm"
   sleep 1
   echo quit
-} | timeout 60 qemu-system-arm -M versatilepb -m 2 -display none -monitor stdio -serial "file:$T/serial.log" \
+} | timeout --foreground -k 5 60 qemu-system-arm -M versatilepb -m 2 -display none -monitor stdio -serial "file:$T/serial.log" \
       -audiodev none,id=snd0 -global pl041.audiodev=snd0 \
       -semihosting-config enable=on,target=native,arg=intro,arg=show,arg=$n \
       -kernel "$B/arm/intro-fixed.elf" >"$T/monitor.log" 2>&1

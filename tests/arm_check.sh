@@ -27,8 +27,11 @@ for f in "$FIXED" "$FLOAT"; do
   [ -f "$f" ] || { echo "FAIL $f is missing (make arm)"; exit 1; }
 done
 
-# Section sizes in bytes, by name, from `size -A`.
+# Section sizes in bytes, by name, from `size -A` (0 for a section the image does not have).
 section() { arm-none-eabi-size -A "$1" | awk -v s="$2" '$1 == s { print $2 + 0; found = 1 } END { if (!found) print 0 }'; }
+for f in "$FIXED" "$FLOAT"; do
+  [ "$(section "$f" .text)" -gt 0 ] || { echo "FAIL $f: no .text section (size -A failed?)"; exit 1; }
+done
 code_bytes() { echo $(($(section "$1" .text) + $(section "$1" .rodata) + $(section "$1" .ARM.exidx) + $(section "$1" .data))); }
 ram_bytes() { echo $(($(section "$1" .data) + $(section "$1" .bss) + $(section "$1" .stack))); }
 
@@ -46,25 +49,38 @@ if [ "${1:-}" = --print ]; then
   exit 0
 fi
 
-# Instructions that use the floating-point unit or any coprocessor: VFP mnemonics (v..., and the
-# old f... forms) and the generic coprocessor operations. Integer ARM mnemonics never start with
-# v or f. Prints the count.
+# Instructions that use the floating-point unit or any coprocessor, whatever their condition
+# and however objdump names them: every ARM instruction word whose bits 27:26 are 11, other than
+# SVC (bits 27:24 = 1111), is a coprocessor instruction (VFP, FPA, CP15 alike); plus anything
+# objdump shows with a VFP mnemonic (v..., f...). Data in code (.word) is skipped. Prints the
+# count.
 fp_instructions() {
   arm-none-eabi-objdump -d "$1" |
-    awk -F'\t' 'NF >= 3 { m = $3; sub(/[ \t].*/, "", m);
-                  if (m ~ /^(v|f)[a-z]/ || m ~ /^(cdp|ldc|stc|mcr|mrc|mcrr|mrrc)2?l?$/) n++ }
+    awk -F'\t' 'NF >= 3 && $3 !~ /^\./ {
+                  w = $2; gsub(/ /, "", w); m = $3; sub(/[ \t].*/, "", m)
+                  if (length(w) == 8 && index("cde", substr(w, 2, 1)) > 0) n++
+                  else if (m ~ /^(v|f)[a-z]/) n++ }
                 END { print n + 0 }'
 }
-# Soft-float helpers (AEABI and libgcc names) and libm functions, in the symbol table.
+# Soft-float helpers (AEABI, libgcc and half-precision names) and libm functions, in the
+# symbol table.
 fp_symbols() {
   arm-none-eabi-nm "$1" |
     awk '{ s = $NF }
-         s ~ /^__aeabi_([fd](add|sub|rsub|mul|div|neg|cmp|cmpeq|cmplt|cmple|cmpge|cmpgt|cmpun|2)|[ul]?[il]2[fd]|[fd]2)/ ||
+         s ~ /^__aeabi_([fd](add|sub|rsub|mul|div|neg|cmp|cmpeq|cmplt|cmple|cmpge|cmpgt|cmpun|2)|[ul]?[il]2[fd]|[fd]2|c[fd](cmp|rcmp))/ ||
+         s ~ /^__gnu_(f2h|h2f|d2h)/ || s ~ /^__powi[sdt]f2$/ || s ~ /^__gnu_(sat)?fract/ ||
+         s ~ /^(__ieee754_|__kernel_)/ ||
+         s ~ /^(round|trunc|copysign|ldexp|frexp|modf|scalbn|hypot|cbrt|expm1|log1p|log10|log2|exp2|sinh|cosh|tanh|asin|acos|fmin|fmax|rint|nearbyint|lrint|lround)f?$/ ||
          s ~ /^__(add|sub|mul|div|neg|cmp|eq|ne|lt|le|gt|ge|unord)[sdt]f[23]$/ ||
          s ~ /^__(fix|fixuns)[sdt]f[sdt]i$/ || s ~ /^__float(un)?[sdt]i[sdt]f$/ ||
          s ~ /^__(extend|trunc)[sdt]f[sdt]f2$/ ||
          s ~ /^(sqrt|sin|cos|tan|atan2?|exp|log|pow|floor|ceil|fabs|fmod)f?$/ { print s }' | sort -u
 }
+
+# Library code linked in (the map's archive members): the fixed image may only contain
+# libfixmath, newlib's memory functions and libgcc's integer division and bit counting.
+members() { awk '/^Archive member included/,/^Discarded input sections/' "$1.map" | grep -o '[^/ ]*\.a([^)]*)' | sort -u; }
+ALLOWED='^(libfixmath\.a\(.*\)|libc\.a\(lib_a-(memcmp|memcpy|memcpy-stub|memset|memmove)\.o\)|libgcc\.a\(_(aeabi_u?ldivmod|clz[sd]i2|u?divsi3|dvmd_tls|u?divmoddi4|u?divdi3|u?moddi3|ashldi3|ashrdi3|lshrdi3|muldi3)\.o\))$'
 
 n=$(fp_instructions "$FIXED")
 [ "$n" -eq 0 ] && pass "arm: fixed image has no floating-point or coprocessor instruction" ||
@@ -73,17 +89,26 @@ syms=$(fp_symbols "$FIXED")
 [ -z "$syms" ] && pass "arm: fixed image calls no soft-float helper or libm function" ||
   fail "arm: fixed image contains floating-point functions: $(echo $syms)"
 
-# Positive controls: the float image is full of soft-float helpers, and the instruction scan
-# finds VFP instructions in an object that has some.
+others=$(members "$FIXED" | grep -Ev "$ALLOWED" || true)
+nm_=$(members "$FIXED" | wc -l)
+[ "$nm_" -gt 0 ] && [ -z "$others" ] && pass "arm: fixed image links only allowed library code ($nm_ members: libfixmath, memcpy/memset/memcmp, integer division)" ||
+  fail "arm: fixed image links other library code: $(echo $others) ($nm_ members)"
+
+# Positive controls: the float image is full of soft-float helpers and libm, and the
+# instruction scan finds VFP/coprocessor instructions, conditional ones too, in an object that
+# has some.
+others=$(members "$FLOAT" | grep -Ev "$ALLOWED" | wc -l)
+[ "$others" -ge 5 ] && pass "arm: positive control: the float image links $others library members outside the allow-list" ||
+  fail "arm: positive control: the float image links only $others library members outside the allow-list"
 syms=$(fp_symbols "$FLOAT" | wc -l)
 [ "$syms" -ge 5 ] && pass "arm: positive control: the scan finds $syms soft-float/libm functions in the float image" ||
   fail "arm: positive control: the scan finds only $syms floating-point functions in the float image"
 ctl=$B/arm/vfp-control.o
-printf '\t.arm\n\t.fpu vfp\n\tvadd.f32 s0, s0, s1\n\tvmul.f64 d0, d1, d2\n\tmrc p15, 0, r0, c0, c0, 0\n' |
+printf '\t.arm\n\t.fpu vfp\n\tvadd.f32 s0, s0, s1\n\tvmul.f64 d0, d1, d2\n\tmrc p15, 0, r0, c0, c0, 0\n\tvaddeq.f32 s0, s0, s1\n\tmrceq p15, 0, r0, c0, c0, 0\n\tldceq p1, c0, [r0]\n\tcdpne p10, 0, c0, c1, c2, 0\n\tsvc 0x123456\n\tadd r0, r0, r1\n' |
   arm-none-eabi-as -mcpu=arm926ej-s -o "$ctl" -
 n=$(fp_instructions "$ctl")
-[ "$n" -eq 3 ] && pass "arm: positive control: the scan finds the 3 VFP/coprocessor instructions of a test object" ||
-  fail "arm: positive control: the scan finds $n of the 3 VFP/coprocessor instructions of a test object"
+[ "$n" -eq 7 ] && pass "arm: positive control: the scan finds the 7 VFP/coprocessor instructions of a test object (conditional ones too), and not its svc and add" ||
+  fail "arm: positive control: the scan finds $n, not 7, VFP/coprocessor instructions in a test object"
 
 code=$(code_bytes "$FIXED")
 [ "$code" -le "$CODE_LIMIT" ] && pass "arm: fixed image code+rodata+data $code B <= $CODE_LIMIT B" ||

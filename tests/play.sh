@@ -70,10 +70,14 @@ for real in fixed float; do
   bad=""
   for t in 3 17 26 36 45; do
     for mode in adaptive full; do
-      "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads 1 -o "$T/t1.ppm" 2>/dev/null
+      rm -f "$T/t1.ppm"
+      "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads 1 -o "$T/t1.ppm" 2>/dev/null ||
+        bad="$bad t=$t/$mode/1:failed"
       for th in 2 3 7; do
-        "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads $th -o "$T/tn.ppm" 2>/dev/null
-        cmp -s "$T/t1.ppm" "$T/tn.ppm" || bad="$bad t=$t/$mode/$th"
+        rm -f "$T/tn.ppm"
+        "$B/rt-$real" render --time $t --size 256x192 --mode $mode --threads $th -o "$T/tn.ppm" 2>/dev/null ||
+          bad="$bad t=$t/$mode/$th:failed"
+        [ -s "$T/t1.ppm" ] && cmp -s "$T/t1.ppm" "$T/tn.ppm" || bad="$bad t=$t/$mode/$th"
       done
     done
   done
@@ -82,6 +86,7 @@ for real in fixed float; do
 done
 # and under the sanitizers, with the traced-point map
 for real in fixed float; do
+  rm -f "$T/s1.ppm" "$T/s4.ppm"
   "$B/san-$real/rt" render --time 36 --size 96x72 --threads 1 --show-samples -o "$T/s1.ppm" 2>"$T/s1.log" &&
     "$B/san-$real/rt" render --time 36 --size 96x72 --threads 4 --show-samples -o "$T/s4.ppm" 2>"$T/s4.log" &&
     cmp -s "$T/s1.ppm" "$T/s4.ppm" && pass "san-$real: 4 threads with --show-samples = 1 thread, no sanitizer report" ||

@@ -37,7 +37,9 @@ enum { ARM_SYS_OPEN = 0x01, ARM_SYS_CLOSE = 0x02, ARM_SYS_WRITE = 0x05, ARM_SYS_
 /* From link.ld. */
 extern uint32_t __fb_start[], __data_start[], __data_end[], __bss_start[], __bss_end[];
 extern uint32_t __stack_bottom[], __stack_top[];
-#define ARM_STACK_PAINT 0x5AC0FFEEu
+/* The stack's paint pattern is link.ld's symbol: its address is the value start.S stores. */
+extern const char ARM_STACK_PAINT[];
+#define ARM_PAINT ((uint32_t)(uintptr_t)ARM_STACK_PAINT)
 
 static int arm_back;            /* framebuffer the next frame is drawn into */
 static int arm_display_on;
@@ -210,7 +212,7 @@ int plat_frame_present(const plat_frame *f, const char *dest)
 static int arm_report_ram(void)
 {
     const uint32_t *w = __stack_bottom;
-    while (w < __stack_top && *w == ARM_STACK_PAINT)
+    while (w < __stack_top && *w == ARM_PAINT)
         w++;
     uint32_t data = (uint32_t)((__data_end - __data_start) * 4);
     uint32_t bss = (uint32_t)((__bss_end - __bss_start) * 4);
@@ -241,6 +243,26 @@ static void arm_exit(int status)
     arm_semi(ARM_SYS_EXIT_EXTENDED, args);
     for (;;)
         ;
+}
+
+/* Called by start.S's exception vectors in supervisor mode: logs the exception and where it
+ * happened, and ends the run with status 3. */
+void arm_fault(uint32_t lr, uint32_t kind);
+void arm_fault(uint32_t lr, uint32_t kind)
+{
+    static const char *const names[8] = {"reset", "undefined instruction", "SVC", "prefetch abort",
+                                          "data abort", "reserved", "IRQ", "FIQ"};
+    const char *s = "error: CPU exception: ";
+    while (*s)
+        arm_putc(*s++);
+    for (s = names[kind & 7]; *s; s++)
+        arm_putc(*s);
+    for (s = " (lr=0x"; *s; s++)
+        arm_putc(*s);
+    for (int i = 28; i >= 0; i -= 4)
+        arm_putc("0123456789abcdef"[(lr >> i) & 15]);
+    plat_log(")");
+    arm_exit(3);
 }
 
 /* Called by start.S with a clear .bss and a painted stack. */

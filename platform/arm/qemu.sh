@@ -28,7 +28,7 @@ elf=build/arm/intro-$real.elf
 [ -f "$elf" ] || die "$elf is missing: run make arm first"
 command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
 timeout_s=${QEMU_TIMEOUT:-600}
-case "$timeout_s" in ''|*[!0-9]*) die "QEMU_TIMEOUT must be a whole number of seconds, not '$timeout_s'" ;; esac
+case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
 
 for a in "$@"; do
   case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
@@ -63,10 +63,12 @@ case "$cmd" in
 esac
 
 status=0
-timeout "$timeout_s" qemu-system-arm "${common[@]}" -display none \
-  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "$@")" ||
+# --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
+# SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
+timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none \
+  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "$@")" </dev/null ||
   status=$?
-if [ "$status" -eq 124 ]; then
+if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
   echo "qemu.sh: error: the $real guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
   exit 1
 fi

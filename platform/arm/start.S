@@ -1,4 +1,4 @@
-/* start.S: reset entry of the ARM926 image: sets the stack, clears .bss, paints the stack for the peak-use measurement, calls arm_main. */
+/* start.S: reset entry and exception vectors of the ARM926 image: sets the stack, clears .bss, paints the stack for the peak-use measurement, calls arm_main; a CPU exception ends the run through arm_fault. */
     .syntax unified
     .arm
     .section .text.start, "ax"
@@ -23,3 +23,34 @@ _start:
     bl      arm_main
 3:  b       3b
     .size _start, . - _start
+
+    /* The exception vectors, linked at address 0. Without them a fault would run the zeroed
+     * RAM below the program as no-ops into _start and restart the run forever. */
+    .section .vectors, "ax"
+    .global arm_vectors
+arm_vectors:
+    b       _start
+    b       1f                  /* undefined instruction */
+    b       2f                  /* SVC (semihosting's svc is taken by QEMU before this) */
+    b       3f                  /* prefetch abort */
+    b       4f                  /* data abort */
+    b       5f                  /* reserved */
+    b       6f                  /* IRQ (never enabled) */
+    b       7f                  /* FIQ (never enabled) */
+1:  mov     r1, #1
+    b       8f
+2:  mov     r1, #2
+    b       8f
+3:  mov     r1, #3
+    b       8f
+4:  mov     r1, #4
+    b       8f
+5:  mov     r1, #5
+    b       8f
+6:  mov     r1, #6
+    b       8f
+7:  mov     r1, #7
+8:  mov     r0, lr              /* where it happened (plus 4 or 8) */
+    msr     cpsr_c, #0xd3       /* back to supervisor mode, interrupts off: its stack is valid */
+    ldr     r2, =arm_fault
+    bx      r2                  /* arm_fault(lr, kind) logs and exits; it never returns */
