@@ -228,6 +228,10 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
+/* Does any object of the set `occ` (bit i: object i) block the segment from org along d of
+ * length dist? Counts the objects tested in st->shadow_tests. */
+int rt_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d, real dist);
+
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
  * aligned for rt_sample. If `traced` is not NULL it gets one byte per pixel (`width` per row):

@@ -1,10 +1,13 @@
-/* shapes.c: the per-type interface: ray intersection and surface normal of spheres and planes. */
+/* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
 #include "rt.h"
 
 /* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
  * discriminant r^2 - |perp|^2 accurate in Q32.32 even far from the origin (where
  * |L|^2 - tca^2 would cancel). */
-static int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+/* Always inlined into the loops over objects below (rt_shapes gets an out-of-line copy). */
+#define SHAPES_INLINE static inline __attribute__((always_inline))
+
+SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
 {
     vec3 l = v3_sub_in(o->center, org);
     real tca = v3_dot_d_in(l, d);
@@ -36,7 +39,7 @@ static dir3 sphere_normal(const rt_object *o, vec3 p)
     return d3_norm(v3_sub(p, o->center), 0);
 }
 
-static int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
 {
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
@@ -66,3 +69,38 @@ const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
     [RT_SPHERE] = {sphere_intersect, sphere_normal},
     [RT_PLANE] = {plane_intersect, plane_normal},
 };
+
+/* Both loops below call the shape tests directly rather than through rt_shapes: the compiler
+ * then inlines them, which saves the indirect call and the passing of the ray per object. */
+SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
+                                : plane_intersect(o, org, d, tmax, t);
+}
+
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    int best = -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        real hit;
+        if (shapes_intersect(&s->objects[i], org, d, tmax, &hit)) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
+int rt_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d, real dist)
+{
+    for (int i = 0; occ; i++, occ >>= 1) {
+        if (!(occ & 1u))
+            continue;
+        real hit;
+        st->shadow_tests++;
+        if (shapes_intersect(&s->objects[i], org, d, dist, &hit))
+            return 1;
+    }
+    return 0;
+}

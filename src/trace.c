@@ -9,37 +9,6 @@ typedef struct trace_ctx {
     real min_contrib; /* adaptive recursion control */
 } trace_ctx;
 
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
-{
-    int best = -1;
-    for (int i = 0; i < s->nobjects; i++) {
-        const rt_object *o = &s->objects[i];
-        real hit;
-        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
-            tmax = hit;
-            best = i;
-        }
-    }
-    *t = tmax;
-    return best;
-}
-
-/* Does any object of the set `occ` block the segment from org along d of length dist? */
-static int trace_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d,
-                          real dist)
-{
-    for (int i = 0; occ; i++, occ >>= 1) {
-        if (!(occ & 1u))
-            continue;
-        const rt_object *o = &s->objects[i];
-        real hit;
-        st->shadow_tests++;
-        if (rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
-            return 1;
-    }
-    return 0;
-}
-
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
 {
     rt_sample *sm = c->sample;
@@ -120,7 +89,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                  * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
                 if (sdist > R_EPS_OFFSET)
-                    blocked = trace_occluded(s, c->stats, occ, p_out, sl,
+                    blocked = rt_occluded(s, c->stats, occ, p_out, sl,
                                              r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
