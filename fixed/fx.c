@@ -124,6 +124,36 @@ static int64_t fx_scale2(int64_t v, int s)
     return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
 }
 
+uint64_t fx_recip61(uint32_t l)
+{
+    /* z ~ 2^63 / M for M = l normalised to [2^31, 2^32): from the 1/sqrt table (x = M / 2^30
+     * in [2, 4), entry y = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / M to about 2^-8), then three
+     * Newton steps z += z (2^63 - M z) / 2^63, each correction formed from e / 2^31 so that the
+     * product fits: z ends within a few units of 2^63 / M. */
+    int k = __builtin_clz(l); /* 1 or 2 */
+    uint64_t m = (uint64_t)l << k;
+    uint64_t y = fx_rsqrt_tab[(m >> 25) - 32];
+    uint64_t z = (y * y) >> 29;
+    for (int i = 0; i < 3; i++) {
+        int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
+        z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
+    }
+    /* (2^61 + h) / l = (2^61 + h) 2^k / M ~ z 2^(k-2) + h z / 2^(63-k), h = l/2; then the
+     * exact quotient by the remainder (a few steps at most). */
+    uint64_t h = l >> 1, n = ((uint64_t)1 << 61) + h;
+    uint64_t q = (z >> (2 - k)) + ((h * z) >> (63 - k));
+    int64_t r = (int64_t)(n - q * l);
+    while (r < 0) {
+        q--;
+        r += l;
+    }
+    while (r >= (int64_t)l) {
+        q++;
+        r -= l;
+    }
+    return q;
+}
+
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     dir3 d = {0, 0, 0};
@@ -147,8 +177,12 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
     int64_t sx = fx_scale2(x, s), sy = fx_scale2(y, s), sz = fx_scale2(z, s);
     uint64_t sum = (uint64_t)(sx * sx) + (uint64_t)(sy * sy) + (uint64_t)(sz * sz);
     uint32_t l = fx_isqrt64(sum); /* in [2^29, 2^31) */
-    /* One division: inv = 2^61 / l, at most 2^32; each sx * inv is below 2^62. */
+    /* inv = 2^61 / l rounded, at most 2^32; each sx * inv is below 2^62. */
+#if FX_SOFT_DIVIDE
+    int64_t inv = (int64_t)fx_recip61(l);
+#else
     int64_t inv = (int64_t)((((uint64_t)1 << 61) + l / 2) / l);
+#endif
     d.x = (unit)fx_round_shift(sx * inv, 31);
     d.y = (unit)fx_round_shift(sy * inv, 31);
     d.z = (unit)fx_round_shift(sz * inv, 31);

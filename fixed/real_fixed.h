@@ -24,6 +24,19 @@
 #define R_LSB ((real)1)
 #define U_LSB ((unit)1)
 
+/* 1 on processors without a divide instruction (the ARM926): there the divisions of the
+ * per-ray path go through exact division-free equivalents (a libgcc 64-bit division costs
+ * hundreds of instructions). Elsewhere the hardware divides. Results are the same either way. */
+#if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
+#define FX_SOFT_DIVIDE 1
+#else
+#define FX_SOFT_DIVIDE 0
+#endif
+
+/* (2^61 + floor(l / 2)) / l rounded down, i.e. 2^61 / l rounded to nearest, for l in
+ * [2^29, 2^31), without a divide instruction (fx_norm64's reciprocal). */
+uint64_t fx_recip61(uint32_t l);
+
 /* Integer square root of a 64-bit value, rounded to nearest. */
 uint32_t fx_isqrt64(uint64_t n);
 /* Unit vector of (x, y, z) given in any common scale; *len receives the length in the same
