@@ -207,6 +207,12 @@ static inline real r_mod(real x, real m)
     return r < 0 ? r + m : r;
 }
 
+/* x modulo m for m a positive power of two (as a real): the same as r_mod, by a mask. */
+static inline real r_mod_pow2(real x, real m)
+{
+    return x & (m - 1);
+}
+
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u)
 {

@@ -132,6 +132,15 @@ static inline real r_mod(real x, real m)
     return r < 0.0f ? r + m : r;
 }
 
+/* x modulo m for m a positive power of two: bit for bit what r_mod returns (the same single
+ * rounding of the same exact value, and fmodf's zero with the sign of x), without fmodf's
+ * library call: x / m and m * floor(x / m) are exact. */
+static inline real r_mod_pow2(real x, real m)
+{
+    real r = x - m * floorf(x / m);
+    return r == 0.0f ? copysignf(0.0f, x) : r;
+}
+
 static inline real r_mul_u(real a, unit u)
 {
     return fl_chk(a * u);

@@ -65,7 +65,7 @@ real rt_noise(vec3 p)
 vec3 rt_noise_wrap(vec3 p)
 {
     const real period = R(256.0);
-    return v3(r_mod(p.x, period), r_mod(p.y, period), r_mod(p.z, period));
+    return v3(r_mod_pow2(p.x, period), r_mod_pow2(p.y, period), r_mod_pow2(p.z, period));
 }
 
 /* Sum over octaves of amp * f(noise), f the identity or the absolute value. */

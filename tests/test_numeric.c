@@ -422,6 +422,33 @@ static void test_real_arithmetic(void **state)
     checks_done();
 }
 
+/* r_mod_pow2 must be bit for bit r_mod (in the float build also the sign of a zero result):
+ * x itself and x's nearest multiples of each power-of-two modulus. */
+static void check_mod_pow2(real x)
+{
+    static const double mods[] = {0.5, 1.0, 2.0, 256.0};
+    for (int k = 0; k < (int)(sizeof mods / sizeof mods[0]); k++) {
+        real m = d2r(mods[k]);
+        for (int j = 0; j < 3; j++) {
+            real a = x;
+            if (j > 0) { /* a multiple of m next to x, and just below it */
+                double q = floor(r2d(x) / mods[k]) * mods[k];
+                if (q < -30000.0 || q > 30000.0)
+                    continue;
+                a = d2r(q);
+                if (j == 2)
+                    a = r_sub(a, R_LSB);
+            }
+            real want = r_mod(a, m), got = r_mod_pow2(a, m);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_mod_pow2(%.9g, %g) = %.9g, r_mod gives %.9g\n", r2d(a), mods[k],
+                            r2d(got), r2d(want));
+            }
+        }
+    }
+}
+
 static void test_real_conversions(void **state)
 {
     (void)state;
@@ -479,7 +506,10 @@ static void test_real_conversions(void **state)
                 e += md;
             check_r("r_mod", e, r_mod(a, m), tol_at(TOL_ADD, md), "%.9g, %.9g", x, md);
         }
+        check_mod_pow2(a);
     }
+    for (int k = 0; k < 200000; k++)
+        check_mod_pow2(k < 100000 ? rng_real(-16, 14) : rng_real(-40, 14));
     for (int k = 0; k < 5000; k++) {
         real a = rng_real(-16, 15);
         double x = r2d(a);
