@@ -311,6 +311,12 @@ static inline wide w_sq(real a)
     return (int64_t)a * a;
 }
 
+/* a * b as a wide (Q32.32), exact. */
+static inline wide w_mul(real a, real b)
+{
+    return (int64_t)a * b;
+}
+
 static inline wide w_add(wide a, wide b)
 {
     return a + b;

@@ -216,6 +216,11 @@ static inline wide w_sq(real a)
     return fl_chk(a * a);
 }
 
+static inline wide w_mul(real a, real b)
+{
+    return fl_chk(a * b);
+}
+
 static inline wide w_add(wide a, wide b)
 {
     return a + b;

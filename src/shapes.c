@@ -92,14 +92,25 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return best;
 }
 
-int rt_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d, real dist)
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
+                real dist)
 {
+    const vec3 lp = s->lights[light].pos;
+    const wide *cull = s->shadow_cull[light];
     for (int i = 0; occ; i++, occ >>= 1) {
         if (!(occ & 1u))
             continue;
+        const rt_object *o = &s->objects[i];
         real hit;
         st->shadow_tests++;
-        if (shapes_intersect(&s->objects[i], org, d, dist, &hit))
+        /* The ray from the light back along -d passes too far from the sphere for this
+         * segment to reach it (rt_scene_prepare): the full test would miss. */
+        if (o->kind == RT_SPHERE && cull[i] > 0) {
+            real cd = v3_dot_d_in(v3_sub_in(o->center, lp), d);
+            if (cd >= 0 || w_sq(cd) < cull[i])
+                continue;
+        }
+        if (shapes_intersect(o, org, d, dist, &hit))
             return 1;
     }
     return 0;

@@ -89,7 +89,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                  * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
                 if (sdist > R_EPS_OFFSET)
-                    blocked = rt_occluded(s, c->stats, occ, p_out, sl,
+                    blocked = rt_occluded(s, c->stats, i, occ, p_out, sl,
                                              r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
