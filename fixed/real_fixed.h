@@ -118,13 +118,15 @@ static inline real r_abs(real a)
 static inline real r_mul(real a, real b)
 {
     int64_t p = (int64_t)a * b;
-    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
-    real r = (real)((q + 0x8000) >> 16);
-    if (__builtin_expect((uint64_t)((p >> 47) + 1) > 1 || r == fix16_overflow, 0)) {
+    /* The rounded result fits in 32 bits and is not fix16_overflow (INT32_MIN) exactly when
+     * p lies in [-2^47 + 2^15 + 1, 2^47 - 2^15): one unsigned range check. */
+    const int64_t lo = -((int64_t)1 << 47) + (1 << 15) + 1, hi = ((int64_t)1 << 47) - (1 << 15);
+    if (__builtin_expect((uint64_t)(p - lo) >= (uint64_t)(hi - lo), 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
         return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
     }
-    return r;
+    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
+    return (real)((q + 0x8000) >> 16);
 }
 
 /* a * 2^-n for n >= 0, rounded. */

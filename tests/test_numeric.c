@@ -967,11 +967,22 @@ static void test_fixed_internals(void **state)
 {
     (void)state;
     /* r_mul is fix16_mul written inline: the same bits wherever fix16_mul does not overflow */
-    for (int k = 0; k < 200000 + N_EDGE_R * N_EDGE_R; k++) {
+    for (int k = 0; k < 200000 + N_EDGE_R * N_EDGE_R + 60000; k++) {
         real a, b;
         if (k < N_EDGE_R * N_EDGE_R) {
             a = edge_r[k / N_EDGE_R];
             b = edge_r[k % N_EDGE_R];
+        } else if (k >= 200000 + N_EDGE_R * N_EDGE_R) {
+            /* products next to +-2^47, where the result stops fitting (r_mul's range check) */
+            int j = k - (200000 + N_EDGE_R * N_EDGE_R);
+            int64_t bb = 65536 + (j < 30000 ? j / 10 : (int64_t)(rng() % 0x7FFF0000));
+            int64_t aa = ((j & 1 ? 1 : -1) * ((int64_t)1 << 47)) / bb + (j % 5) - 2;
+            if (aa < -INT32_MAX || aa > INT32_MAX)
+                continue;
+            a = (real)aa;
+            b = (real)(j & 2 ? -bb : bb);
+            if (j & 2)
+                a = -a;
         } else if (k % 4 == 0) {
             /* products whose low 16 bits are exactly one half: the rounding ties */
             a = (real)(rng() >> 48) | 1;
