@@ -135,6 +135,12 @@ static inline real r_shr(real a, int n)
     return n > 0 ? (real)fx_round_shift(a, n) : a;
 }
 
+/* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
+static inline real r_mul_sign(real v, int g)
+{
+    return fx_sat((int64_t)v * g);
+}
+
 /* Multiply by a small non-negative integer. */
 static inline real r_muli(real a, int32_t i)
 {

@@ -86,6 +86,13 @@ static inline real r_shr(real a, int n)
     return ldexpf(a, -n);
 }
 
+/* v * g for g in {-1, 0, 1}: g > 0 ? v : g < 0 ? -v : 0 (a product would give -0 for g = 0
+ * and v < 0, so it stays a selection). */
+static inline real r_mul_sign(real v, int g)
+{
+    return g > 0 ? v : (g < 0 ? -v : 0.0f);
+}
+
 static inline real r_muli(real a, int32_t i)
 {
     return fl_chk(a * (real)i);

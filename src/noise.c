@@ -25,7 +25,7 @@ uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
 
 static real noise_term(real v, int g)
 {
-    return g > 0 ? v : (g < 0 ? r_neg(v) : 0);
+    return r_mul_sign(v, g);
 }
 
 /* Dot product of the corner's gradient with the offset (x, y, z) from that corner. */

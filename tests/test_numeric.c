@@ -507,6 +507,15 @@ static void test_real_conversions(void **state)
             check_r("r_mod", e, r_mod(a, m), tol_at(TOL_ADD, md), "%.9g, %.9g", x, md);
         }
         check_mod_pow2(a);
+        /* r_mul_sign: exactly the selection g > 0 ? a : g < 0 ? r_neg(a) : 0, bit for bit */
+        for (int g = -1; g <= 1; g++) {
+            real want = g > 0 ? a : (g < 0 ? r_neg(a) : 0), got = r_mul_sign(a, g);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_mul_sign(%.9g, %d) = %.9g, want %.9g\n", r2d(a), g, r2d(got),
+                            r2d(want));
+            }
+        }
     }
     for (int k = 0; k < 200000; k++)
         check_mod_pow2(k < 100000 ? rng_real(-16, 14) : rng_real(-40, 14));
