@@ -1,16 +1,14 @@
 /* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
 #include "rt.h"
 
-/* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
- * discriminant r^2 - |perp|^2 accurate in Q32.32 even far from the origin (where
- * |L|^2 - tca^2 would cancel). */
 /* Always inlined into the loops over objects below (rt_shapes gets an out-of-line copy). */
 #define SHAPES_INLINE static inline __attribute__((always_inline))
 
-SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+/* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
+ * discriminant r^2 - |perp|^2 accurate in Q32.32 even far from the origin (where
+ * |L|^2 - tca^2 would cancel). Given l = centre - origin and tca = l . d. */
+SHAPES_INLINE int sphere_hit(const rt_object *o, vec3 l, real tca, dir3 d, real tmax, real *t)
 {
-    vec3 l = v3_sub_in(o->center, org);
-    real tca = v3_dot_d_in(l, d);
     /* Cheap miss test: the sphere lies behind an origin that is outside it. */
     if (tca < 0 && w_len2(l) > o->radius2)
         return 0;
@@ -32,6 +30,12 @@ SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tm
         return 0;
     *t = hit;
     return 1;
+}
+
+SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    vec3 l = v3_sub_in(o->center, org);
+    return sphere_hit(o, l, v3_dot_d_in(l, d), d, tmax, t);
 }
 
 static dir3 sphere_normal(const rt_object *o, vec3 p)
@@ -84,6 +88,35 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     for (int i = 0; i < s->nobjects; i++) {
         real hit;
         if (shapes_intersect(&s->objects[i], org, d, tmax, &hit)) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
+int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
+{
+    real tmax = R_T_MAX;
+    int best = -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        real hit;
+        int h;
+        if (o->kind == RT_SPHERE) {
+            /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
+             * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */
+            vec3 l = s->eye_l[i];
+            real tca = v3_dot_d_in(l, d);
+            wide k = s->eye_cull[i];
+            if (k > 0 && (tca <= 0 || w_sq(tca) < k))
+                continue;
+            h = sphere_hit(o, l, tca, d, tmax, &hit);
+        } else {
+            h = plane_intersect(o, s->camera.eye, d, tmax, &hit);
+        }
+        if (h) {
             tmax = hit;
             best = i;
         }

@@ -7,6 +7,7 @@ typedef struct trace_ctx {
     rt_stats *stats;
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
+    int eye_prepared; /* the view's eye is the scene camera's: rt_nearest_primary applies */
 } trace_ctx;
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
@@ -29,7 +30,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 {
     const rt_scene *s = c->scene;
     real t;
-    int id = rt_nearest(s, org, d, R_T_MAX, &t);
+    int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
+                                           : rt_nearest(s, org, d, R_T_MAX, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
         return s->background;
@@ -152,7 +154,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_ctx c = {s, stats, out, p->min_contrib};
+    int eye_prepared = v->eye.x == s->camera.eye.x && v->eye.y == s->camera.eye.y &&
+                       v->eye.z == s->camera.eye.z;
+    trace_ctx c = {s, stats, out, p->min_contrib, eye_prepared};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)

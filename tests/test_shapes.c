@@ -288,6 +288,72 @@ static void test_shadow_cull(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* rt_nearest_primary (spheres' l and quick rejection prepared for the camera's eye) finds the
+ * same object at the same distance as rt_nearest, for rays from the eye that graze spheres,
+ * miss them by a hair or start inside one, and rejects early on many of them. */
+static void test_primary_cull(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 100000, culled = 0, near_culled = 0, hits = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 10 == 0 ? 2000.0 : 20.0;
+        s = (rt_scene){0};
+        s.nobjects = 4;
+        for (int j = 0; j < 3; j++)
+            s.objects[j] = sphere(rnd(-span, span), rnd(-span, span), rnd(-span, span),
+                                  i % 10 == 0 ? rnd(0.05, 100) : rnd(0.05, 5));
+        s.objects[3] = plane(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1), rnd(-span, span));
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        double ex = rnd(-span, span), ey = rnd(-span, span), ez = rnd(-span, span);
+        if (i % 7 == 0) { /* the eye inside the first sphere */
+            ex = to_d(s.objects[0].center.x) + rnd(-0.5, 0.5) * to_d(s.objects[0].radius);
+            ey = to_d(s.objects[0].center.y);
+            ez = to_d(s.objects[0].center.z);
+        }
+        s.camera.eye = vd(ex, ey, ez);
+        rt_scene_prepare(&s);
+        /* aim at a point about the radius off a sphere's centre, at right angles to the view
+         * now and then: rays that pass just inside or just outside it */
+        const rt_object *o = &s.objects[i % 3];
+        double cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
+        double r = to_d(o->radius);
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double ax = cx - ex, ay = cy - ey, az = cz - ez;
+        double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
+        ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-12;
+        double rq = i & 1 ? r + rnd(-0.002, 0.012) + r * rnd(0, 0.002) : r * rnd(0, 3);
+        vec3 to = vd(cx + ux / un * rq - ex, cy + uy / un * rq - ey, cz + uz / un * rq - ez);
+        if (v3_is_zero(to))
+            continue;
+        dir3 d = d3_norm(to, 0);
+        real t1, t2;
+        int id1 = rt_nearest(&s, s.camera.eye, d, R_T_MAX, &t1);
+        int id2 = rt_nearest_primary(&s, d, &t2);
+        if (id1 != id2 || t1 != t2)
+            fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1,
+                     to_d(t1), id2, to_d(t2), i);
+        hits += id1 >= 0 && id1 < 3;
+        real tca = v3_dot_d_in(s.eye_l[i % 3], d);
+        wide k = s.eye_cull[i % 3];
+        if (k > 0 && (tca <= 0 || w_sq(tca) < k)) {
+            culled++;
+            if (rq - r < 0.012 + r * 0.002 && rq > r)
+                near_culled++;
+        }
+    }
+    print_message("primary cull: %d rays, %d hit a sphere, %d rejected early (%d of them passing "
+                  "within 0.012 + 0.2%% of the radius)\n",
+                  n, hits, culled, near_culled);
+    assert_true(hits > n / 10);
+    assert_true(culled > n / 10);
+    assert_true(near_culled > n / 100);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 /* Tracing a pixel fills the per-sample record adaptive subsampling will compare. */
 static void test_sample_record(void **state)
 {
@@ -396,6 +462,7 @@ int main(void)
         cmocka_unit_test(test_plane_cases),
         cmocka_unit_test(test_sphere_random),
         cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_primary_cull),
         cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain),
     };
