@@ -141,10 +141,12 @@ static inline real r_mod(real x, real m)
 
 /* x modulo m for m a positive power of two: bit for bit what r_mod returns (the same single
  * rounding of the same exact value, and fmodf's zero with the sign of x), without fmodf's
- * library call: x / m and m * floor(x / m) are exact. */
+ * library call: x / m and m * floor(x / m) are exact, unless x / m underflows. */
 static inline real r_mod_pow2(real x, real m)
 {
     real r = x - m * floorf(x / m);
+    if (r < 0.0f)
+        r = r + m; /* only when x / m underflowed to -0 (tiny negative x): fmodf's x + m */
     return r == 0.0f ? copysignf(0.0f, x) : r;
 }
 

@@ -519,6 +519,13 @@ static void test_real_conversions(void **state)
     }
     for (int k = 0; k < 200000; k++)
         check_mod_pow2(k < 100000 ? rng_real(-16, 14) : rng_real(-40, 14));
+#if !REAL_FIXED
+    /* the float build's extremes: subnormals (x / m underflows) and the largest values */
+    for (int k = 0; k < 2000; k++) {
+        float x = ldexpf(1.0f + (float)rng_unit(), -150 + (int)(rng() % 40)) * (k & 1 ? -1 : 1);
+        check_mod_pow2(k % 100 == 99 ? ldexpf(x, 200) : x);
+    }
+#endif
     for (int k = 0; k < 5000; k++) {
         real a = rng_real(-16, 15);
         double x = r2d(a);
