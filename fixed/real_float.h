@@ -81,9 +81,11 @@ static inline real r_mul(real a, real b)
     return fl_chk(a * b);
 }
 
+/* a * 2^-n by a product with the exact power of two (folded to a constant for a constant n):
+ * the same correctly rounded result as ldexpf, without the library call. */
 static inline real r_shr(real a, int n)
 {
-    return ldexpf(a, -n);
+    return n >= 0 && n < 32 ? a * (1.0f / (float)(1u << n)) : ldexpf(a, -n);
 }
 
 /* v * g for g in {-1, 0, 1}: g > 0 ? v : g < 0 ? -v : 0 (a product would give -0 for g = 0

@@ -524,6 +524,15 @@ static void test_real_conversions(void **state)
     for (int k = 0; k < 2000; k++) {
         float x = ldexpf(1.0f + (float)rng_unit(), -150 + (int)(rng() % 40)) * (k & 1 ? -1 : 1);
         check_mod_pow2(k % 100 == 99 ? ldexpf(x, 200) : x);
+        /* r_shr: the same bits as ldexpf, subnormal results included */
+        for (int n = 0; n < 40; n += 1 + n / 8) {
+            float want = ldexpf(x, -n), got = r_shr(x, n);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_shr(%g, %d) = %g, ldexpf gives %g\n", (double)x, n, (double)got,
+                            (double)want);
+            }
+        }
     }
 #endif
     for (int k = 0; k < 5000; k++) {
