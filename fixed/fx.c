@@ -124,20 +124,52 @@ static int64_t fx_scale2(int64_t v, int s)
     return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
 }
 
-uint64_t fx_recip61(uint32_t l)
+/* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
+ * in [2, 4), entry y = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
+ * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
+ * product fits. */
+static inline uint64_t fx_recip63(uint64_t m)
 {
-    /* z ~ 2^63 / M for M = l normalised to [2^31, 2^32): from the 1/sqrt table (x = M / 2^30
-     * in [2, 4), entry y = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / M to about 2^-8), then three
-     * Newton steps z += z (2^63 - M z) / 2^63, each correction formed from e / 2^31 so that the
-     * product fits: z ends within a few units of 2^63 / M. */
-    int k = __builtin_clz(l); /* 1 or 2 */
-    uint64_t m = (uint64_t)l << k;
     uint64_t y = fx_rsqrt_tab[(m >> 25) - 32];
     uint64_t z = (y * y) >> 29;
     for (int i = 0; i < 3; i++) {
         int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
         z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
     }
+    return z;
+}
+
+uint64_t fx_udiv64(uint64_t n, uint32_t m)
+{
+    /* q ~ n z / 2^(63-k) with z ~ 2^63 / (m 2^k), the 94-bit product formed from n's halves
+     * (z is capped at 2^32 so that the low half's product fits); then the exact quotient by
+     * the remainder, or the library's division when the estimate is off by more than a few
+     * units (large quotients, where z's relative error of 2^-30 shows). */
+    int k = __builtin_clz(m);
+    uint64_t z = fx_recip63((uint64_t)m << k);
+    if (z > ((uint64_t)1 << 32))
+        z = (uint64_t)1 << 32;
+    uint64_t nh = n >> 32, nl = n & 0xFFFFFFFFu;
+    uint64_t q = ((nh * z) + ((nl * z) >> 32)) >> (31 - k);
+    int64_t r = (int64_t)(n - q * m);
+    if (r < -4 * (int64_t)m || r >= 4 * (int64_t)m)
+        return n / m;
+    while (r < 0) {
+        q--;
+        r += m;
+    }
+    while (r >= (int64_t)m) {
+        q++;
+        r -= m;
+    }
+    return q;
+}
+
+uint64_t fx_recip61(uint32_t l)
+{
+    /* z ~ 2^63 / M for M = l normalised to [2^31, 2^32) */
+    int k = __builtin_clz(l); /* 1 or 2 */
+    uint64_t z = fx_recip63((uint64_t)l << k);
     /* (2^61 + h) / l = (2^61 + h) 2^k / M ~ z 2^(k-2) + h z / 2^(63-k), h = l/2; then the
      * exact quotient by the remainder (a few steps at most). */
     uint64_t h = l >> 1, n = ((uint64_t)1 << 61) + h;

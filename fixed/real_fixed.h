@@ -37,6 +37,10 @@
  * [2^29, 2^31), without a divide instruction (fx_norm64's reciprocal). */
 uint64_t fx_recip61(uint32_t l);
 
+/* n / m rounded down, for n < 2^62 and m >= 1, without a divide instruction when the quotient
+ * is below about 2^31 (larger ones fall back to the library's division). */
+uint64_t fx_udiv64(uint64_t n, uint32_t m);
+
 /* Integer square root of a 64-bit value, rounded to nearest. */
 uint32_t fx_isqrt64(uint64_t n);
 /* Unit vector of (x, y, z) given in any common scale; *len receives the length in the same
@@ -237,7 +241,11 @@ static inline real r_div_u(real a, unit b)
     int neg = (a < 0) != (b < 0);
     uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30; /* below 2^61 */
     uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
+#if FX_SOFT_DIVIDE /* the plane test's t = num / den: quotients below 2^30 */
+    int64_t q = (int64_t)fx_udiv64(n + m / 2, (uint32_t)m);
+#else
     int64_t q = (int64_t)((n + m / 2) / m);
+#endif
     return fx_sat(neg ? -q : q);
 }
 

@@ -1141,6 +1141,31 @@ static void test_fixed_internals(void **state)
         }
     }
 
+    /* fx_udiv64 (the ARM926's division in r_div_u) against the division: quotients of every
+     * size (the large ones take its fallback), divisors of every size, and exact multiples
+     * and their neighbours, where an estimate off by one shows */
+    for (int k = 0; k < 400000; k++) {
+        uint32_t m = (uint32_t)(rng() >> (32 + rng() % 32));
+        if (m == 0)
+            m = 1;
+        uint64_t n;
+        if (k % 3 == 0)
+            n = rng() >> 2; /* any n below 2^62 */
+        else {
+            uint64_t q = rng() >> (33 + rng() % 31); /* a quotient below 2^31 */
+            n = q * m + (k % 3 == 1 ? 0 : (uint64_t)(rng() % m));
+            if (k % 5 == 0 && n > 0)
+                n--;
+            n &= ((uint64_t)1 << 62) - 1;
+        }
+        uint64_t want = n / m, got = fx_udiv64(n, m);
+        if (got != want) {
+            n_failed++;
+            print_error("fx_udiv64(%llu, %u) = %llu, want %llu\n", (unsigned long long)n, m,
+                        (unsigned long long)got, (unsigned long long)want);
+        }
+    }
+
     /* fx_norm64: any 64-bit components, any scale */
     static const struct {
         int64_t x, y, z;
