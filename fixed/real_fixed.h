@@ -225,6 +225,12 @@ static inline real r_mod_pow2(real x, real m)
     return x & (m - 1);
 }
 
+/* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m) (so in [0, m]): the same mask. */
+static inline real r_mod_pow2_twice(real x, real m)
+{
+    return r_mod_pow2(r_muli(x, 2), m);
+}
+
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u)
 {

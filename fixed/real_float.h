@@ -152,6 +152,19 @@ static inline real r_mod_pow2(real x, real m)
     return r == 0.0f ? copysignf(0.0f, x) : r;
 }
 
+/* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m), i.e. in [0, m] or -0: 2x < 4m is
+ * exact, so at most two exact subtractions of m give the same bits (zeros signed alike)
+ * without the floor. */
+static inline real r_mod_pow2_twice(real x, real m)
+{
+    real t = x * 2.0f;
+    if (t >= m)
+        t = t - m;
+    if (t >= m)
+        t = t - m;
+    return t;
+}
+
 static inline real r_mul_u(real a, unit u)
 {
     return fl_chk(a * u);

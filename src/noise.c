@@ -77,7 +77,10 @@ static real noise_octaves(vec3 p, int octaves, int absolute)
         real n = rt_noise(p);
         sum = r_add(sum, r_mul(absolute ? r_abs(n) : n, amp));
         amp = r_shr(amp, 1);
-        p = rt_noise_wrap(v3(r_muli(p.x, 2), r_muli(p.y, 2), r_muli(p.z, 2)));
+        /* the next octave: twice the wrapped point, wrapped again (rt_noise_wrap's bits) */
+        const real period = R(256.0);
+        p = v3(r_mod_pow2_twice(p.x, period), r_mod_pow2_twice(p.y, period),
+               r_mod_pow2_twice(p.z, period));
     }
     return sum;
 }

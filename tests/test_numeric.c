@@ -445,6 +445,13 @@ static void check_mod_pow2(real x)
                 print_error("r_mod_pow2(%.9g, %g) = %.9g, r_mod gives %.9g\n", r2d(a), mods[k],
                             r2d(got), r2d(want));
             }
+            /* r_mod_pow2_twice on that wrapped value: r_mod_pow2 of its double */
+            real w2 = r_mod_pow2(r_muli(got, 2), m), g2 = r_mod_pow2_twice(got, m);
+            if (memcmp(&w2, &g2, sizeof w2) != 0) {
+                n_failed++;
+                print_error("r_mod_pow2_twice(%.9g, %g) = %.9g, want %.9g\n", r2d(got), mods[k],
+                            r2d(g2), r2d(w2));
+            }
         }
     }
 }
