@@ -29,7 +29,7 @@ static real noise_term(real v, int g)
 }
 
 /* Dot product of the corner's gradient with the offset (x, y, z) from that corner. */
-static real noise_dot(uint32_t h, real x, real y, real z)
+static inline __attribute__((always_inline)) real noise_dot(uint32_t h, real x, real y, real z)
 {
     const int8_t *g = noise_grad[(h >> 8) & 15];
     return r_add(r_add(noise_term(x, g[0]), noise_term(y, g[1])), noise_term(z, g[2]));
