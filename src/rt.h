@@ -121,8 +121,10 @@ typedef struct rt_scene {
      * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 and
      * shadow_cull[l][i] > 0, or (c . d)^2 < shadow_cull[l][i] (rt_scene_prepare). */
     wide shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
-    /* Per sphere, for rays from the camera's eye: eye_l = centre - eye, and the same
-     * rejection as shadow_cull (eye_cull > 0 and tca <= 0 or tca^2 < eye_cull: a miss). */
+    /* Per sphere, for rays from the point eye_at (the camera's eye when prepared): eye_l =
+     * centre - eye_at, and the same rejection as shadow_cull (eye_cull > 0 and tca <= 0 or
+     * tca^2 < eye_cull: a miss). */
+    vec3 eye_at;
     vec3 eye_l[RT_MAX_OBJECTS];
     wide eye_cull[RT_MAX_OBJECTS];
 } rt_scene;
@@ -236,7 +238,7 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
-/* rt_nearest for a ray from s->camera.eye (a primary ray), the same result: the sphere test
+/* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
  * starts from the frame's eye_l and eye_cull. */
 int rt_nearest_primary(const rt_scene *s, dir3 d, real *t);
 

@@ -181,10 +181,11 @@ void rt_scene_prepare(rt_scene *s)
             s->shadow_cull[l][i] =
                 o->kind == RT_SPHERE ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
         }
+    s->eye_at = s->camera.eye;
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
-        s->eye_l[i] = v3_sub_in(o->center, s->camera.eye); /* as the sphere test forms it */
-        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->camera.eye, 0) : 0;
+        s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
+        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0) : 0;
     }
     scene_derive_effects(s);
 }

@@ -114,7 +114,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
                 continue;
             h = sphere_hit(o, l, tca, d, tmax, &hit);
         } else {
-            h = plane_intersect(o, s->camera.eye, d, tmax, &hit);
+            h = plane_intersect(o, s->eye_at, d, tmax, &hit);
         }
         if (h) {
             tmax = hit;

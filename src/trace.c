@@ -7,7 +7,7 @@ typedef struct trace_ctx {
     rt_stats *stats;
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
-    int eye_prepared; /* the view's eye is the scene camera's: rt_nearest_primary applies */
+    int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
 } trace_ctx;
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
@@ -154,8 +154,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    int eye_prepared = v->eye.x == s->camera.eye.x && v->eye.y == s->camera.eye.y &&
-                       v->eye.z == s->camera.eye.z;
+    int eye_prepared =
+        v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
     trace_ctx c = {s, stats, out, p->min_contrib, eye_prepared};
     out->nhits = 0;
     out->cell = 0;
