@@ -124,6 +124,68 @@ static int64_t fx_scale2(int64_t v, int s)
     return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
 }
 
+/* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
+ * in [2, 4), entry y = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
+ * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
+ * product fits. */
+static inline uint64_t fx_recip63(uint64_t m)
+{
+    uint64_t y = fx_rsqrt_tab[(m >> 25) - 32];
+    uint64_t z = (y * y) >> 29;
+    for (int i = 0; i < 3; i++) {
+        int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
+        z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
+    }
+    return z;
+}
+
+uint64_t fx_udiv64(uint64_t n, uint32_t m)
+{
+    /* q ~ n z / 2^(63-k) with z ~ 2^63 / (m 2^k), the 94-bit product formed from n's halves
+     * (z is capped at 2^32 so that the low half's product fits); then the exact quotient by
+     * the remainder, or the library's division when the estimate is off by more than a few
+     * units (large quotients, where z's relative error of 2^-30 shows). */
+    int k = __builtin_clz(m);
+    uint64_t z = fx_recip63((uint64_t)m << k);
+    if (z > ((uint64_t)1 << 32))
+        z = (uint64_t)1 << 32;
+    uint64_t nh = n >> 32, nl = n & 0xFFFFFFFFu;
+    uint64_t q = ((nh * z) + ((nl * z) >> 32)) >> (31 - k);
+    int64_t r = (int64_t)(n - q * m);
+    if (r < -4 * (int64_t)m || r >= 4 * (int64_t)m)
+        return n / m;
+    while (r < 0) {
+        q--;
+        r += m;
+    }
+    while (r >= (int64_t)m) {
+        q++;
+        r -= m;
+    }
+    return q;
+}
+
+uint64_t fx_recip61(uint32_t l)
+{
+    /* z ~ 2^63 / M for M = l normalised to [2^31, 2^32) */
+    int k = __builtin_clz(l); /* 1 or 2 */
+    uint64_t z = fx_recip63((uint64_t)l << k);
+    /* (2^61 + h) / l = (2^61 + h) 2^k / M ~ z 2^(k-2) + h z / 2^(63-k), h = l/2; then the
+     * exact quotient by the remainder (a few steps at most). */
+    uint64_t h = l >> 1, n = ((uint64_t)1 << 61) + h;
+    uint64_t q = (z >> (2 - k)) + ((h * z) >> (63 - k));
+    int64_t r = (int64_t)(n - q * l);
+    while (r < 0) {
+        q--;
+        r += l;
+    }
+    while (r >= (int64_t)l) {
+        q++;
+        r -= l;
+    }
+    return q;
+}
+
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     dir3 d = {0, 0, 0};
@@ -147,8 +209,12 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
     int64_t sx = fx_scale2(x, s), sy = fx_scale2(y, s), sz = fx_scale2(z, s);
     uint64_t sum = (uint64_t)(sx * sx) + (uint64_t)(sy * sy) + (uint64_t)(sz * sz);
     uint32_t l = fx_isqrt64(sum); /* in [2^29, 2^31) */
-    /* One division: inv = 2^61 / l, at most 2^32; each sx * inv is below 2^62. */
+    /* inv = 2^61 / l rounded, at most 2^32; each sx * inv is below 2^62. */
+#if FX_SOFT_DIVIDE
+    int64_t inv = (int64_t)fx_recip61(l);
+#else
     int64_t inv = (int64_t)((((uint64_t)1 << 61) + l / 2) / l);
+#endif
     d.x = (unit)fx_round_shift(sx * inv, 31);
     d.y = (unit)fx_round_shift(sy * inv, 31);
     d.z = (unit)fx_round_shift(sz * inv, 31);

@@ -24,6 +24,23 @@
 #define R_LSB ((real)1)
 #define U_LSB ((unit)1)
 
+/* 1 on processors without a divide instruction (the ARM926): there the divisions of the
+ * per-ray path go through exact division-free equivalents (a libgcc 64-bit division costs
+ * hundreds of instructions). Elsewhere the hardware divides. Results are the same either way. */
+#if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
+#define FX_SOFT_DIVIDE 1
+#else
+#define FX_SOFT_DIVIDE 0
+#endif
+
+/* (2^61 + floor(l / 2)) / l rounded down, i.e. 2^61 / l rounded to nearest, for l in
+ * [2^29, 2^31), without a divide instruction (fx_norm64's reciprocal). */
+uint64_t fx_recip61(uint32_t l);
+
+/* n / m rounded down, for n < 2^62 and m >= 1, without a divide instruction when the quotient
+ * is below about 2^31 (larger ones fall back to the library's division). */
+uint64_t fx_udiv64(uint64_t n, uint32_t m);
+
 /* Integer square root of a 64-bit value, rounded to nearest. */
 uint32_t fx_isqrt64(uint64_t n);
 /* Unit vector of (x, y, z) given in any common scale; *len receives the length in the same
@@ -105,19 +122,27 @@ static inline real r_abs(real a)
 static inline real r_mul(real a, real b)
 {
     int64_t p = (int64_t)a * b;
-    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
-    real r = (real)((q + 0x8000) >> 16);
-    if (__builtin_expect((uint64_t)((p >> 47) + 1) > 1 || r == fix16_overflow, 0)) {
+    /* The rounded result fits in 32 bits and is not fix16_overflow (INT32_MIN) exactly when
+     * p lies in [-2^47 + 2^15 + 1, 2^47 - 2^15): one unsigned range check. */
+    const int64_t lo = -((int64_t)1 << 47) + (1 << 15) + 1, hi = ((int64_t)1 << 47) - (1 << 15);
+    if (__builtin_expect((uint64_t)(p - lo) >= (uint64_t)(hi - lo), 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
         return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
     }
-    return r;
+    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
+    return (real)((q + 0x8000) >> 16);
 }
 
 /* a * 2^-n for n >= 0, rounded. */
 static inline real r_shr(real a, int n)
 {
     return n > 0 ? (real)fx_round_shift(a, n) : a;
+}
+
+/* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
+static inline real r_mul_sign(real v, int g)
+{
+    return fx_sat((int64_t)v * g);
 }
 
 /* Multiply by a small non-negative integer. */
@@ -194,6 +219,18 @@ static inline real r_mod(real x, real m)
     return r < 0 ? r + m : r;
 }
 
+/* x modulo m for m a positive power of two (as a real): the same as r_mod, by a mask. */
+static inline real r_mod_pow2(real x, real m)
+{
+    return x & (m - 1);
+}
+
+/* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m) (so in [0, m]): the same mask. */
+static inline real r_mod_pow2_twice(real x, real m)
+{
+    return r_mod_pow2(r_muli(x, 2), m);
+}
+
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u)
 {
@@ -210,7 +247,11 @@ static inline real r_div_u(real a, unit b)
     int neg = (a < 0) != (b < 0);
     uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30; /* below 2^61 */
     uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
+#if FX_SOFT_DIVIDE /* the plane test's t = num / den: quotients below 2^30 */
+    int64_t q = (int64_t)fx_udiv64(n + m / 2, (uint32_t)m);
+#else
     int64_t q = (int64_t)((n + m / 2) / m);
+#endif
     return fx_sat(neg ? -q : q);
 }
 
@@ -290,6 +331,12 @@ static inline uint8_t r_to_byte(real c)
 static inline wide w_sq(real a)
 {
     return (int64_t)a * a;
+}
+
+/* a * b as a wide (Q32.32), exact. */
+static inline wide w_mul(real a, real b)
+{
+    return (int64_t)a * b;
 }
 
 static inline wide w_add(wide a, wide b)

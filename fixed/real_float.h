@@ -81,9 +81,18 @@ static inline real r_mul(real a, real b)
     return fl_chk(a * b);
 }
 
+/* a * 2^-n by a product with the exact power of two (folded to a constant for a constant n):
+ * the same correctly rounded result as ldexpf, without the library call. */
 static inline real r_shr(real a, int n)
 {
-    return ldexpf(a, -n);
+    return n >= 0 && n < 32 ? a * (1.0f / (float)(1u << n)) : ldexpf(a, -n);
+}
+
+/* v * g for g in {-1, 0, 1}: g > 0 ? v : g < 0 ? -v : 0 (a product would give -0 for g = 0
+ * and v < 0, so it stays a selection). */
+static inline real r_mul_sign(real v, int g)
+{
+    return g > 0 ? v : (g < 0 ? -v : 0.0f);
 }
 
 static inline real r_muli(real a, int32_t i)
@@ -130,6 +139,30 @@ static inline real r_mod(real x, real m)
 {
     real r = fmodf(x, m);
     return r < 0.0f ? r + m : r;
+}
+
+/* x modulo m for m a positive power of two: bit for bit what r_mod returns (the same single
+ * rounding of the same exact value, and fmodf's zero with the sign of x), without fmodf's
+ * library call: x / m and m * floor(x / m) are exact, unless x / m underflows. */
+static inline real r_mod_pow2(real x, real m)
+{
+    real r = x - m * floorf(x / m);
+    if (r < 0.0f)
+        r = r + m; /* only when x / m underflowed to -0 (tiny negative x): fmodf's x + m */
+    return r == 0.0f ? copysignf(0.0f, x) : r;
+}
+
+/* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m), i.e. in [0, m] or -0: 2x < 4m is
+ * exact, so at most two exact subtractions of m give the same bits (zeros signed alike)
+ * without the floor. */
+static inline real r_mod_pow2_twice(real x, real m)
+{
+    real t = x * 2.0f;
+    if (t >= m)
+        t = t - m;
+    if (t >= m)
+        t = t - m;
+    return t;
 }
 
 static inline real r_mul_u(real a, unit u)
@@ -205,6 +238,11 @@ static inline uint8_t r_to_byte(real c)
 static inline wide w_sq(real a)
 {
     return fl_chk(a * a);
+}
+
+static inline wide w_mul(real a, real b)
+{
+    return fl_chk(a * b);
 }
 
 static inline wide w_add(wide a, wide b)

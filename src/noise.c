@@ -25,11 +25,11 @@ uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
 
 static real noise_term(real v, int g)
 {
-    return g > 0 ? v : (g < 0 ? r_neg(v) : 0);
+    return r_mul_sign(v, g);
 }
 
 /* Dot product of the corner's gradient with the offset (x, y, z) from that corner. */
-static real noise_dot(uint32_t h, real x, real y, real z)
+static inline __attribute__((always_inline)) real noise_dot(uint32_t h, real x, real y, real z)
 {
     const int8_t *g = noise_grad[(h >> 8) & 15];
     return r_add(r_add(noise_term(x, g[0]), noise_term(y, g[1])), noise_term(z, g[2]));
@@ -65,7 +65,7 @@ real rt_noise(vec3 p)
 vec3 rt_noise_wrap(vec3 p)
 {
     const real period = R(256.0);
-    return v3(r_mod(p.x, period), r_mod(p.y, period), r_mod(p.z, period));
+    return v3(r_mod_pow2(p.x, period), r_mod_pow2(p.y, period), r_mod_pow2(p.z, period));
 }
 
 /* Sum over octaves of amp * f(noise), f the identity or the absolute value. */
@@ -77,7 +77,10 @@ static real noise_octaves(vec3 p, int octaves, int absolute)
         real n = rt_noise(p);
         sum = r_add(sum, r_mul(absolute ? r_abs(n) : n, amp));
         amp = r_shr(amp, 1);
-        p = rt_noise_wrap(v3(r_muli(p.x, 2), r_muli(p.y, 2), r_muli(p.z, 2)));
+        /* the next octave: twice the wrapped point, wrapped again (rt_noise_wrap's bits) */
+        const real period = R(256.0);
+        p = v3(r_mod_pow2_twice(p.x, period), r_mod_pow2_twice(p.y, period),
+               r_mod_pow2_twice(p.z, period));
     }
     return sum;
 }

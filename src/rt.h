@@ -117,6 +117,16 @@ typedef struct rt_scene {
     int forced;                         /* 1: every effect forced on, nothing skipped */
     uint32_t near_lights;               /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
+    /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
+     * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 and
+     * shadow_cull[l][i] > 0, or (c . d)^2 < shadow_cull[l][i] (rt_scene_prepare). */
+    wide shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
+    /* Per sphere, for rays from the point eye_at (the camera's eye when prepared): eye_l =
+     * centre - eye_at, and the same rejection as shadow_cull (eye_cull > 0 and tca <= 0 or
+     * tca^2 < eye_cull: a miss). */
+    vec3 eye_at;
+    vec3 eye_l[RT_MAX_OBJECTS];
+    wide eye_cull[RT_MAX_OBJECTS];
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
@@ -233,6 +243,16 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
+
+/* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
+ * starts from the frame's eye_l and eye_cull. */
+int rt_nearest_primary(const rt_scene *s, dir3 d, real *t);
+
+/* Does any object of the set `occ` (bit i: object i) block the shadow ray toward light
+ * `light`, the segment from org along d of length dist? Counts the objects tested in
+ * st->shadow_tests. */
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
+                real dist);
 
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably

@@ -122,6 +122,37 @@ static int scene_light_near(const rt_object *o, vec3 q)
     return gap < RT_NEAR_LIGHT;
 }
 
+/* The rejection of sphere o for rays from or toward the point lp (rt_scene.shadow_cull: a light,
+ * reach 2 R_EPS_OFFSET; rt_scene.eye_cull: the eye, reach 0, where the ray starts at lp
+ * itself and s = tca, pointing away when s <= 0).
+ *
+ * A shadow ray is the segment from p_out (the hit point lifted R_EPS_OFFSET off the surface)
+ * along d toward the light, stopped R_EPS_OFFSET short of it; d is aimed from the hit point
+ * or from p_out (near lights). Every point of it lies within mu = 2 R_EPS_OFFSET (plus
+ * rounding) of the ray from the light back along -d. If the sphere test reports a hit, a
+ * point of the segment is within the radius r (plus the test's rounding) of the centre, so
+ * that ray comes within R = r + mu + margin of the centre. With c = centre - light, D = |c|
+ * and s = c . d as computed (|s - exact| <= E, the rounding of the dot product and of d's
+ * length), the ray passes farther than R from the centre when s >= 0 (it points away; the
+ * nearest point is the light, D > R) or when D^2 - s^2 > R^2 + E (2D + E), i.e.
+ * s^2 < K = D^2 - R^2 - E (2D + E). K <= 0 (light inside or near the sphere): no rejection.
+ * The margins are generous for both builds: 2^-10 + (D + r) 2^-14 on the radius covers the
+ * sphere test's rounding in either (a few Q16.16 steps, or float's relative 2^-24 of the
+ * coordinates) and the rounding of K itself; E = D 2^-18 + 2 LSB bounds the dot product's
+ * error (the unit vector's length is exact to 2^-28 fixed, 2^-21 float). */
+static wide scene_cull(const rt_object *o, vec3 lp, real reach)
+{
+    vec3 c = v3_sub(o->center, lp);
+    wide d2 = w_len2(c);
+    real d = r_sqrt_w(d2);
+    real margin = r_add(R(0.0009765625), r_shr(r_add(d, o->radius), 14));
+    real big_r = r_add(r_add(o->radius, reach), margin);
+    real e = r_add(r_shr(d, 18), r_muli(R_LSB, 2));
+    /* D < 14190 and R, E small against it inside the scene cube: no term saturates */
+    wide k = w_sub(w_sub(d2, w_sq(big_r)), w_add(w_mul(r_muli(d, 2), e), w_sq(e)));
+    return k > 0 ? k : 0;
+}
+
 void rt_scene_prepare(rt_scene *s)
 {
     for (int i = 0; i < s->nobjects; i++) {
@@ -143,9 +174,19 @@ void rt_scene_prepare(rt_scene *s)
     }
     s->near_lights = 0;
     for (int l = 0; l < s->nlights; l++)
-        for (int i = 0; i < s->nobjects; i++)
-            if (scene_light_near(&s->objects[i], s->lights[l].pos))
+        for (int i = 0; i < s->nobjects; i++) {
+            const rt_object *o = &s->objects[i];
+            if (scene_light_near(o, s->lights[l].pos))
                 s->near_lights |= 1u << l;
+            s->shadow_cull[l][i] =
+                o->kind == RT_SPHERE ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+        }
+    s->eye_at = s->camera.eye;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
+        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0) : 0;
+    }
     scene_derive_effects(s);
 }
 

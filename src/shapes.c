@@ -1,13 +1,14 @@
-/* shapes.c: the per-type interface: ray intersection and surface normal of spheres and planes. */
+/* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
 #include "rt.h"
+
+/* Always inlined into the loops over objects below (rt_shapes gets an out-of-line copy). */
+#define SHAPES_INLINE static inline __attribute__((always_inline))
 
 /* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
  * discriminant r^2 - |perp|^2 accurate in Q32.32 even far from the origin (where
- * |L|^2 - tca^2 would cancel). */
-static int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+ * |L|^2 - tca^2 would cancel). Given l = centre - origin and tca = l . d. */
+SHAPES_INLINE int sphere_hit(const rt_object *o, vec3 l, real tca, dir3 d, real tmax, real *t)
 {
-    vec3 l = v3_sub_in(o->center, org);
-    real tca = v3_dot_d_in(l, d);
     /* Cheap miss test: the sphere lies behind an origin that is outside it. */
     if (tca < 0 && w_len2(l) > o->radius2)
         return 0;
@@ -31,12 +32,18 @@ static int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, rea
     return 1;
 }
 
+SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    vec3 l = v3_sub_in(o->center, org);
+    return sphere_hit(o, l, v3_dot_d_in(l, d), d, tmax, t);
+}
+
 static dir3 sphere_normal(const rt_object *o, vec3 p)
 {
     return d3_norm(v3_sub(p, o->center), 0);
 }
 
-static int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
 {
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
@@ -66,3 +73,78 @@ const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
     [RT_SPHERE] = {sphere_intersect, sphere_normal},
     [RT_PLANE] = {plane_intersect, plane_normal},
 };
+
+/* Both loops below call the shape tests directly rather than through rt_shapes: the compiler
+ * then inlines them, which saves the indirect call and the passing of the ray per object. */
+SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
+                                : plane_intersect(o, org, d, tmax, t);
+}
+
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    int best = -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        real hit;
+        if (shapes_intersect(&s->objects[i], org, d, tmax, &hit)) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
+int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
+{
+    real tmax = R_T_MAX;
+    int best = -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        real hit;
+        int h;
+        if (o->kind == RT_SPHERE) {
+            /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
+             * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */
+            vec3 l = s->eye_l[i];
+            real tca = v3_dot_d_in(l, d);
+            wide k = s->eye_cull[i];
+            if (k > 0 && (tca <= 0 || w_sq(tca) < k))
+                continue;
+            h = sphere_hit(o, l, tca, d, tmax, &hit);
+        } else {
+            h = plane_intersect(o, s->eye_at, d, tmax, &hit);
+        }
+        if (h) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
+                real dist)
+{
+    const vec3 lp = s->lights[light].pos;
+    const wide *cull = s->shadow_cull[light];
+    for (int i = 0; occ; i++, occ >>= 1) {
+        if (!(occ & 1u))
+            continue;
+        const rt_object *o = &s->objects[i];
+        real hit;
+        st->shadow_tests++;
+        /* The ray from the light back along -d passes too far from the sphere for this
+         * segment to reach it (rt_scene_prepare): the full test would miss. */
+        if (o->kind == RT_SPHERE && cull[i] > 0) {
+            real cd = v3_dot_d_in(v3_sub_in(o->center, lp), d);
+            if (cd >= 0 || w_sq(cd) < cull[i])
+                continue;
+        }
+        if (shapes_intersect(o, org, d, dist, &hit))
+            return 1;
+    }
+    return 0;
+}

@@ -42,7 +42,7 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell)
     case RT_TEX_WOOD: {
         /* Rings around the y axis, made irregular by noise. */
         real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm(q, tx->octaves)));
-        return rt_palette(tx->palette, r_mod(ring, R_ONE));
+        return rt_palette(tx->palette, r_mod_pow2(ring, R_ONE));
     }
     case RT_TEX_NOISE:
     default: {

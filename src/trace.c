@@ -7,38 +7,8 @@ typedef struct trace_ctx {
     rt_stats *stats;
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
+    int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
 } trace_ctx;
-
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
-{
-    int best = -1;
-    for (int i = 0; i < s->nobjects; i++) {
-        const rt_object *o = &s->objects[i];
-        real hit;
-        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
-            tmax = hit;
-            best = i;
-        }
-    }
-    *t = tmax;
-    return best;
-}
-
-/* Does any object of the set `occ` block the segment from org along d of length dist? */
-static int trace_occluded(const rt_scene *s, rt_stats *st, uint32_t occ, vec3 org, dir3 d,
-                          real dist)
-{
-    for (int i = 0; occ; i++, occ >>= 1) {
-        if (!(occ & 1u))
-            continue;
-        const rt_object *o = &s->objects[i];
-        real hit;
-        st->shadow_tests++;
-        if (rt_shapes[o->kind].intersect(o, org, d, dist, &hit))
-            return 1;
-    }
-    return 0;
-}
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
 {
@@ -60,7 +30,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 {
     const rt_scene *s = c->scene;
     real t;
-    int id = rt_nearest(s, org, d, R_T_MAX, &t);
+    int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
+                                           : rt_nearest(s, org, d, R_T_MAX, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
         return s->background;
@@ -120,7 +91,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                  * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
                 if (sdist > R_EPS_OFFSET)
-                    blocked = trace_occluded(s, c->stats, occ, p_out, sl,
+                    blocked = rt_occluded(s, c->stats, i, occ, p_out, sl,
                                              r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
@@ -183,7 +154,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_ctx c = {s, stats, out, p->min_contrib};
+    int eye_prepared =
+        v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
+    trace_ctx c = {s, stats, out, p->min_contrib, eye_prepared};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)

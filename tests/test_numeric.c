@@ -422,6 +422,40 @@ static void test_real_arithmetic(void **state)
     checks_done();
 }
 
+/* r_mod_pow2 must be bit for bit r_mod (in the float build also the sign of a zero result):
+ * x itself and x's nearest multiples of each power-of-two modulus. */
+static void check_mod_pow2(real x)
+{
+    static const double mods[] = {0.5, 1.0, 2.0, 256.0};
+    for (int k = 0; k < (int)(sizeof mods / sizeof mods[0]); k++) {
+        real m = d2r(mods[k]);
+        for (int j = 0; j < 3; j++) {
+            real a = x;
+            if (j > 0) { /* a multiple of m next to x, and just below it */
+                double q = floor(r2d(x) / mods[k]) * mods[k];
+                if (q < -30000.0 || q > 30000.0)
+                    continue;
+                a = d2r(q);
+                if (j == 2)
+                    a = r_sub(a, R_LSB);
+            }
+            real want = r_mod(a, m), got = r_mod_pow2(a, m);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_mod_pow2(%.9g, %g) = %.9g, r_mod gives %.9g\n", r2d(a), mods[k],
+                            r2d(got), r2d(want));
+            }
+            /* r_mod_pow2_twice on that wrapped value: r_mod_pow2 of its double */
+            real w2 = r_mod_pow2(r_muli(got, 2), m), g2 = r_mod_pow2_twice(got, m);
+            if (memcmp(&w2, &g2, sizeof w2) != 0) {
+                n_failed++;
+                print_error("r_mod_pow2_twice(%.9g, %g) = %.9g, want %.9g\n", r2d(got), mods[k],
+                            r2d(g2), r2d(w2));
+            }
+        }
+    }
+}
+
 static void test_real_conversions(void **state)
 {
     (void)state;
@@ -479,7 +513,35 @@ static void test_real_conversions(void **state)
                 e += md;
             check_r("r_mod", e, r_mod(a, m), tol_at(TOL_ADD, md), "%.9g, %.9g", x, md);
         }
+        check_mod_pow2(a);
+        /* r_mul_sign: exactly the selection g > 0 ? a : g < 0 ? r_neg(a) : 0, bit for bit */
+        for (int g = -1; g <= 1; g++) {
+            real want = g > 0 ? a : (g < 0 ? r_neg(a) : 0), got = r_mul_sign(a, g);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_mul_sign(%.9g, %d) = %.9g, want %.9g\n", r2d(a), g, r2d(got),
+                            r2d(want));
+            }
+        }
     }
+    for (int k = 0; k < 200000; k++)
+        check_mod_pow2(k < 100000 ? rng_real(-16, 14) : rng_real(-40, 14));
+#if !REAL_FIXED
+    /* the float build's extremes: subnormals (x / m underflows) and the largest values */
+    for (int k = 0; k < 2000; k++) {
+        float x = ldexpf(1.0f + (float)rng_unit(), -150 + (int)(rng() % 40)) * (k & 1 ? -1 : 1);
+        check_mod_pow2(k % 100 == 99 ? ldexpf(x, 200) : x);
+        /* r_shr: the same bits as ldexpf, subnormal results included */
+        for (int n = 0; n < 40; n += 1 + n / 8) {
+            float want = ldexpf(x, -n), got = r_shr(x, n);
+            if (memcmp(&want, &got, sizeof want) != 0) {
+                n_failed++;
+                print_error("r_shr(%g, %d) = %g, ldexpf gives %g\n", (double)x, n, (double)got,
+                            (double)want);
+            }
+        }
+    }
+#endif
     for (int k = 0; k < 5000; k++) {
         real a = rng_real(-16, 15);
         double x = r2d(a);
@@ -931,17 +993,28 @@ static uint64_t ref_isqrt(uint64_t n)
 #endif
 
 #if REAL_FIXED /* fx_isqrt64, fx_norm64 and fx_renorm60 exist in the fixed build only */
-/* The fixed build's own parts: fx_isqrt64, fx_norm64, fx_renorm60, and r_mul against
+/* The fixed build's own parts: fx_isqrt64, fx_recip61, fx_norm64, fx_renorm60, and r_mul against
  * libfixmath's fix16_mul bit for bit. */
 static void test_fixed_internals(void **state)
 {
     (void)state;
     /* r_mul is fix16_mul written inline: the same bits wherever fix16_mul does not overflow */
-    for (int k = 0; k < 200000 + N_EDGE_R * N_EDGE_R; k++) {
+    for (int k = 0; k < 200000 + N_EDGE_R * N_EDGE_R + 60000; k++) {
         real a, b;
         if (k < N_EDGE_R * N_EDGE_R) {
             a = edge_r[k / N_EDGE_R];
             b = edge_r[k % N_EDGE_R];
+        } else if (k >= 200000 + N_EDGE_R * N_EDGE_R) {
+            /* products next to +-2^47, where the result stops fitting (r_mul's range check) */
+            int j = k - (200000 + N_EDGE_R * N_EDGE_R);
+            int64_t bb = 65536 + (j < 30000 ? j / 10 : (int64_t)(rng() % 0x7FFF0000));
+            int64_t aa = ((j & 1 ? 1 : -1) * ((int64_t)1 << 47)) / bb + (j % 5) - 2;
+            if (aa < -INT32_MAX || aa > INT32_MAX)
+                continue;
+            a = (real)aa;
+            b = (real)(j & 2 ? -bb : bb);
+            if (j & 2)
+                a = -a;
         } else if (k % 4 == 0) {
             /* products whose low 16 bits are exactly one half: the rounding ties */
             a = (real)(rng() >> 48) | 1;
@@ -1047,6 +1120,57 @@ static void test_fixed_internals(void **state)
         uint32_t r = fx_isqrt64(n);
         if (r != ref_isqrt(n))
             check_i("fx_isqrt64", (double)ref_isqrt(n), r, 0.0, "%llu", (unsigned long long)n);
+    }
+
+    /* fx_recip61 (the ARM926's division-free reciprocal in fx_norm64) against the division it
+     * replaces: the ends of its range, the table's interval boundaries and their neighbours,
+     * and random l. An approximation off by a few units would fail here. */
+    for (int k = 0; k < 400000; k++) {
+        uint64_t l;
+        if (k < 1000)
+            l = ((uint64_t)1 << 29) + (uint64_t)k; /* lowest end */
+        else if (k < 2000)
+            l = ((uint64_t)1 << 31) - 1 - (uint64_t)(k - 1000); /* highest end */
+        else if (k < 2000 + 64 * 2 * 7) {
+            int j = k - 2000; /* 1/32 steps of [1, 4) as the table divides it, +-3 */
+            l = ((uint64_t)1 << (29 + (j / 7) / 64)) * (64 + (uint64_t)((j / 7) % 64)) / 64 +
+                (uint64_t)(j % 7) - 3;
+            if (l < ((uint64_t)1 << 29) || l >= ((uint64_t)1 << 31))
+                continue;
+        } else
+            l = ((uint64_t)1 << 29) + rng() % (((uint64_t)3) << 29);
+        uint64_t want = (((uint64_t)1 << 61) + l / 2) / l;
+        uint64_t got = fx_recip61((uint32_t)l);
+        if (got != want) {
+            n_failed++;
+            print_error("fx_recip61(%llu) = %llu, want %llu\n", (unsigned long long)l,
+                        (unsigned long long)got, (unsigned long long)want);
+        }
+    }
+
+    /* fx_udiv64 (the ARM926's division in r_div_u) against the division: quotients of every
+     * size (the large ones take its fallback), divisors of every size, and exact multiples
+     * and their neighbours, where an estimate off by one shows */
+    for (int k = 0; k < 400000; k++) {
+        uint32_t m = (uint32_t)(rng() >> (32 + rng() % 32));
+        if (m == 0)
+            m = 1;
+        uint64_t n;
+        if (k % 3 == 0)
+            n = rng() >> 2; /* any n below 2^62 */
+        else {
+            uint64_t q = rng() >> (33 + rng() % 31); /* a quotient below 2^31 */
+            n = q * m + (k % 3 == 1 ? 0 : (uint64_t)(rng() % m));
+            if (k % 5 == 0 && n > 0)
+                n--;
+            n &= ((uint64_t)1 << 62) - 1;
+        }
+        uint64_t want = n / m, got = fx_udiv64(n, m);
+        if (got != want) {
+            n_failed++;
+            print_error("fx_udiv64(%llu, %u) = %llu, want %llu\n", (unsigned long long)n, m,
+                        (unsigned long long)got, (unsigned long long)want);
+        }
     }
 
     /* fx_norm64: any 64-bit components, any scale */

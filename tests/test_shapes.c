@@ -201,6 +201,159 @@ static void test_sphere_random(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* The shadow rays' quick rejection (rt_scene.shadow_cull) never changes a result: shadow
+ * segments built as trace.c builds them (from a surface point lifted R_EPS_OFFSET, aimed from
+ * the point or from the lifted point, stopped R_EPS_OFFSET short of the light) that pass within
+ * a hair of a sphere give the same answer through rt_occluded as through the sphere test
+ * alone, and the rejection does fire on many of them, near misses included. */
+static void test_shadow_cull(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 200000, culled = 0, near_culled = 0, hits = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 10 == 0 ? 2000.0 : 20.0; /* now and then a scene far out */
+        double r = i % 10 == 0 ? rnd(0.05, 100) : rnd(0.05, 5);
+        s = (rt_scene){0};
+        s.nobjects = 1;
+        s.objects[0] = sphere(rnd(-span, span), rnd(-span, span), rnd(-span, span), r);
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        s.nlights = 1;
+        double lx = rnd(-span, span), ly = rnd(-span, span), lz = rnd(-span, span);
+        s.lights[0].pos = vd(lx, ly, lz);
+        rt_scene_prepare(&s);
+        const rt_object *o = &s.objects[0];
+        /* a point q at about the radius from the centre; the surface point p lies beyond q as
+         * seen from the light, so that the shadow segment passes by q */
+        double cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double rq = r * (1 + rnd(-0.02, 0.05)) + rnd(-0.005, 0.01);
+        if (i & 2) {
+            /* q off the centre at right angles to the light: the segment grazes the sphere,
+             * passing a few thousandths outside or inside it, where the rejection starts */
+            double ax = cx - lx, ay = cy - ly, az = cz - lz;
+            double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
+            ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
+            rq = r + rnd(-0.002, 0.012) + r * rnd(0, 0.002);
+        }
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+        double qx = cx + ux / un * rq, qy = cy + uy / un * rq, qz = cz + uz / un * rq;
+        double k = rnd(1.02, 3);
+        vec3 p = vd(lx + (qx - lx) * k, ly + (qy - ly) * k, lz + (qz - lz) * k);
+        if (!v3_within(p, R_SCENE_MAX))
+            continue;
+        vec3 to_light = v3_sub(s.lights[0].pos, p);
+        if (v3_is_zero(to_light))
+            continue;
+        real dist;
+        dir3 l = d3_norm(to_light, &dist);
+        /* a surface normal facing the light, tilted at random */
+        dir3 nrm = d3_norm(vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9),
+                              to_d(l.z) + rnd(-0.9, 0.9)), 0);
+        if (d3_dot(nrm, l) <= 0)
+            continue;
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        if (i & 1) { /* aimed from the lifted point, as for a light near a surface */
+            vec3 t2 = v3_sub(s.lights[0].pos, p_out);
+            if (v3_is_zero(t2))
+                continue;
+            l = d3_norm(t2, &dist);
+        }
+        if (dist <= R_EPS_OFFSET)
+            continue;
+        real seg = r_sub(dist, R_EPS_OFFSET), t;
+        int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
+        rt_stats st = {0};
+        int got = rt_occluded(&s, &st, 0, 1, p_out, l, seg);
+        if (got != want)
+            fail_msg("rt_occluded %d, sphere test %d (case %d, r %g, q at %g of the centre)", got,
+                     want, i, r, rq);
+        hits += want;
+        real cd = v3_dot_d_in(v3_sub_in(o->center, s.lights[0].pos), l);
+        wide kc = s.shadow_cull[0][0];
+        if (kc > 0 && (cd >= 0 || w_sq(cd) < kc)) {
+            culled++;
+            if (rq - r < 0.012 + r * 0.002)
+                near_culled++;
+        }
+    }
+    print_message("shadow cull: %d segments, %d blocked, %d rejected early (%d of them passing "
+                  "within 0.012 + 0.2%% of the radius)\n",
+                  n, hits, culled, near_culled);
+    assert_true(hits > n / 10);
+    assert_true(culled > n / 20);
+    assert_true(near_culled > n / 100);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
+/* rt_nearest_primary (spheres' l and quick rejection prepared for the camera's eye) finds the
+ * same object at the same distance as rt_nearest, for rays from the eye that graze spheres,
+ * miss them by a hair or start inside one, and rejects early on many of them. */
+static void test_primary_cull(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 100000, culled = 0, near_culled = 0, hits = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 10 == 0 ? 2000.0 : 20.0;
+        s = (rt_scene){0};
+        s.nobjects = 4;
+        for (int j = 0; j < 3; j++)
+            s.objects[j] = sphere(rnd(-span, span), rnd(-span, span), rnd(-span, span),
+                                  i % 10 == 0 ? rnd(0.05, 100) : rnd(0.05, 5));
+        s.objects[3] = plane(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1), rnd(-span, span));
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        double ex = rnd(-span, span), ey = rnd(-span, span), ez = rnd(-span, span);
+        if (i % 7 == 0) { /* the eye inside the first sphere */
+            ex = to_d(s.objects[0].center.x) + rnd(-0.5, 0.5) * to_d(s.objects[0].radius);
+            ey = to_d(s.objects[0].center.y);
+            ez = to_d(s.objects[0].center.z);
+        }
+        s.camera.eye = vd(ex, ey, ez);
+        rt_scene_prepare(&s);
+        /* aim at a point about the radius off a sphere's centre, at right angles to the view
+         * now and then: rays that pass just inside or just outside it */
+        const rt_object *o = &s.objects[i % 3];
+        double cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
+        double r = to_d(o->radius);
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double ax = cx - ex, ay = cy - ey, az = cz - ez;
+        double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
+        ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-12;
+        double rq = i & 1 ? r + rnd(-0.002, 0.012) + r * rnd(0, 0.002) : r * rnd(0, 3);
+        vec3 to = vd(cx + ux / un * rq - ex, cy + uy / un * rq - ey, cz + uz / un * rq - ez);
+        if (v3_is_zero(to))
+            continue;
+        dir3 d = d3_norm(to, 0);
+        real t1, t2;
+        int id1 = rt_nearest(&s, s.camera.eye, d, R_T_MAX, &t1);
+        int id2 = rt_nearest_primary(&s, d, &t2);
+        if (id1 != id2 || t1 != t2)
+            fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1,
+                     to_d(t1), id2, to_d(t2), i);
+        hits += id1 >= 0 && id1 < 3;
+        real tca = v3_dot_d_in(s.eye_l[i % 3], d);
+        wide k = s.eye_cull[i % 3];
+        if (k > 0 && (tca <= 0 || w_sq(tca) < k)) {
+            culled++;
+            if (rq - r < 0.012 + r * 0.002 && rq > r)
+                near_culled++;
+        }
+    }
+    print_message("primary cull: %d rays, %d hit a sphere, %d rejected early (%d of them passing "
+                  "within 0.012 + 0.2%% of the radius)\n",
+                  n, hits, culled, near_culled);
+    assert_true(hits > n / 10);
+    assert_true(culled > n / 10);
+    assert_true(near_culled > n / 100);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 /* Tracing a pixel fills the per-sample record adaptive subsampling will compare. */
 static void test_sample_record(void **state)
 {
@@ -308,6 +461,8 @@ int main(void)
         cmocka_unit_test(test_sphere_cases),
         cmocka_unit_test(test_plane_cases),
         cmocka_unit_test(test_sphere_random),
+        cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_primary_cull),
         cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain),
     };
