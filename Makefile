@@ -265,12 +265,12 @@ test: setup-test
 	@tests/run.sh
 
 SECONDS ?= 60
-fuzz: setup
+fuzz: setup-test
 	@$(MAKE) --no-print-directory fuzz-progs
 	@tests/fuzz.sh $(SECONDS)
 
 STEP ?= 1
-soak: setup
+soak: setup-test
 	@$(MAKE) --no-print-directory all
 	@tests/soak.sh $(STEP)
 
