@@ -6,8 +6,8 @@
 # core, each sample frame rendered by every configuration in turn (the intro every STEP_S
 # seconds, ROUNDS rounds). ARM926: tests/qemu_bench.sh, the fixed and the soft-float image at
 # 320x240, instructions per frame counted by QEMU (frames QEMU_FRAMES = "FIRST LAST STEP").
-# Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 2-3
-# minutes in all. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
+# Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
+# on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
 # seconds (make test). Progress goes to standard error; the file is also printed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -86,7 +86,7 @@ d_n=$(seq 0 "$step" 48 | wc -l)
   echo "## How to reproduce"
   echo
   echo '```sh'
-  echo "make bench                        # this file, about 2-3 minutes (make all arm first if needed)"
+  echo "make bench                        # builds what is missing, then writes this file (80 s on the 2-core build machine)"
   echo "QUICK=1 tests/bench_all.sh        # smoke run in seconds: build/bench/bench-quick.md (make test runs it)"
   echo "ROUNDS=1 STEP_S=4 QEMU_FRAMES=\"0 1200 48\" tests/bench_all.sh -o /tmp/bench.md   # shorter"
   echo "tests/bench_intro.sh 640x480 3 2  # the desktop part alone, any sizes (comma-separated)"
