@@ -3,8 +3,10 @@
 #   make            build/rt-float, build/rt-fixed, build/rt-cmp
 #   make run        set up if needed, render stills of the intro headless with both builds
 #   make test       set up if needed, build everything and run the test suite
-#   make bench      the intro's frames per second (640x480, both builds, 1 thread and every core),
-#                   then the demo scene's ms per frame, both builds side by side
+#   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
+#                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
+#                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
+#   make bench-demo the demo scene's ms per frame, both builds side by side
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
@@ -70,7 +72,7 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-subsample bench-effects scene-programs stress clean distclean setup san \
+.PHONY: all run test bench bench-demo bench-subsample bench-effects scene-programs stress clean distclean setup san \
         setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -274,9 +276,12 @@ soak: setup-test
 	@$(MAKE) --no-print-directory all
 	@tests/soak.sh $(STEP)
 
-bench: setup
+bench: setup-arm
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
+	@tests/bench_all.sh
+
+bench-demo: setup
 	@$(MAKE) --no-print-directory all
-	@tests/bench_intro.sh
 	@tests/bench.sh
 
 bench-subsample: setup

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench.sh: ms per frame of rt-float and rt-fixed on the demo scene, measured side by side (make bench).
+# bench.sh: ms per frame of rt-float and rt-fixed on the demo scene, measured side by side (make bench-demo).
 # Each round renders every sample time once with each build, alternating, so both see the same
 # machine load. Times are the tracer's own (--stats ms), without image encoding.
 # Usage: tests/bench.sh [SIZE] [ROUNDS] [RENDER OPTIONS...]    (defaults 320x240, 3, none:

@@ -6,7 +6,9 @@
 # advances 1 ns per instruction; the counts are exact to the clock's 125/3 ns step and repeat
 # run after run. Prints per-build mean and worst instructions per frame, their ratio, and frames
 # per second on a 200 MHz ARM926 assuming one instruction per cycle (a real ARM926 needs more
-# cycles than instructions: read those fps as an upper bound).
+# cycles than instructions: read those fps as an upper bound). Progress goes to standard error.
+# With BENCH_ROWS=FILE, one tab-separated line per image is also appended to FILE for
+# tests/bench_all.sh:   arm926 <fixed|float> 320x240 1 <mean instructions> <worst instructions> instructions
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,22 +16,33 @@ first=${1:-0}
 last=${2:-1200}
 step=${3:-24}
 [ $# -eq 0 ] || [ $# -eq 3 ] || { echo "usage: tests/qemu_bench.sh [FIRST LAST STEP]" >&2; exit 2; }
+[[ "$first$last$step" =~ ^[0-9]+$ ]] && [ "$step" -gt 0 ] && [ "$last" -ge "$first" ] ||
+  { echo "qemu-bench: error: FIRST LAST STEP must be whole numbers, FIRST <= LAST, STEP > 0" >&2; exit 2; }
 CLOCK_MHZ=200
 out=build/bench
 mkdir -p "$out"
 
+nframes=$(( (last - first) / step + 1 ))
 declare -A mean worst ram
 for real in fixed float; do
   log=$out/qemu-$real.log
-  printf 'qemu-bench: %s image, frames %s..%s every %s ...' "$real" "$first" "$last" "$step" >&2
   start=$(date +%s)
-  if ! platform/arm/qemu.sh bench "$real" "$first" "$last" "$step" >"$log" 2>&1; then
+  platform/arm/qemu.sh bench "$real" "$first" "$last" "$step" >"$log" 2>&1 &
+  pid=$!
+  # progress: the frames the guest has reported so far, once a second
+  while kill -0 "$pid" 2>/dev/null; do
+    printf '\rqemu-bench: %s image, frames %s..%s every %s: frame %d/%d, %d s ' "$real" "$first" "$last" \
+      "$step" "$(grep -c '^frame=' "$log" || true)" "$nframes" "$(($(date +%s) - start))" >&2
+    sleep 1
+  done
+  if ! wait "$pid"; then
     echo >&2
     echo "qemu-bench: error: the $real run failed:" >&2
     tail -3 "$log" >&2
     exit 1
   fi
-  echo " $(grep -c '^frame=' "$log") frames in $(($(date +%s) - start)) s of host time" >&2
+  printf '\rqemu-bench: %s image, frames %s..%s every %s: %d frames in %d s of host time\n' "$real" "$first" \
+    "$last" "$step" "$(grep -c '^frame=' "$log")" "$(($(date +%s) - start))" >&2
   mean[$real]=$(sed -n 's/^frames=.* mean=\([0-9]*\)$/\1/p' "$log")
   worst[$real]=$(sed -n 's/^worst=\([0-9]*\)$/\1/p' "$log")
   ram[$real]=$(sed -n 's/^ram: //p' "$log")
@@ -46,4 +59,8 @@ awk -v mhz=$CLOCK_MHZ -v fm="${mean[fixed]}" -v fw="${worst[fixed]}" -v sm="${me
   printf "\nsoft-float / fixed: %.2fx the instructions on the mean frame, %.2fx on the worst\n", sm / fm, sw / fw
 }'
 echo "RAM besides the framebuffers (fixed): ${ram[fixed]}"
+if [ -n "${BENCH_ROWS:-}" ]; then
+  printf 'arm926\t%s\t320x240\t1\t%s\t%s\tinstructions\n' fixed "${mean[fixed]}" "${worst[fixed]}" \
+    float "${mean[float]}" "${worst[float]}" >>"$BENCH_ROWS"
+fi
 echo "per-frame counts: $out/qemu-fixed.log, $out/qemu-float.log"

@@ -470,6 +470,59 @@ run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL l
 run_part tests/play.sh
 run_part tests/arm.sh
 
+# ---- make bench's script, QUICK=1: runs end to end and writes a well-formed table ------------
+# Content, not timings: every configuration has one row, worst >= mean > 0, the fps follow from
+# the times (1000 / ms) and from the instruction counts (200 MHz / instructions), the CPU and
+# core count are named, and progress went to standard error.
+bench_md=$T/bench-quick.md
+nl=$'\n'
+if QUICK=1 tests/bench_all.sh -o "$bench_md" >"$T/bench-quick.out" 2>"$T/bench-quick.err"; then
+  nth=2; [ "$(nproc)" -gt 1 ] || nth=1
+  problems=$(awk -F' *[|] *' -v nth="$nth" -v cores="$(nproc)" '
+    function num(s) { sub(/ .*/, "", s); sub(/\*$/, "", s); return s + 0 }
+    function near(a, b, r) { return a >= b * 0.99 - r && a <= b * 1.01 + r }   # r: the printed rounding
+    /^- CPU: .*, [0-9]+ cores/ { cpu = 1; if ($0 !~ ", " cores " cores") print "core count is not " cores }
+    /^[|] platform [|] build [|] size [|] threads [|] mean frame [|] worst frame [|] mean fps [|] worst-frame fps [|]$/ { head = 1 }
+    /^[|] (desktop|ARM926, QEMU) [|]/ {
+      key = $2 "/" $3 "/" $4 "/" $5
+      if (key in seen) print "duplicate row " key
+      seen[key] = 1
+      m = num($6); w = num($7); fm = num($8); fw = num($9)
+      if (!(m > 0 && w >= m)) print "bad mean/worst: " $0
+      if ($2 == "desktop") {
+        d++
+        if ($6 !~ / ms$/ || !near(fm, 1000 / m, 0.051) || !near(fw, 1000 / w, 0.051)) print "fps do not follow from ms: " $0
+      } else {
+        a++
+        if ($5 != 1 || $6 !~ / M instructions$/ || $8 !~ /[*]$/ || !near(fm, 200 / m, 0.0051) || !near(fw, 200 / w, 0.0051))
+          print "ARM926 fps do not follow from 200 MHz / instructions: " $0
+      }
+    }
+    /^[\\][*] ARM926 fps: [*][*]at a 200 MHz clock, assuming one instruction per cycle/ { label = 1 }
+    END {
+      if (!cpu) print "no CPU line"
+      if (!head) print "no table header"
+      if (!label) print "no 200 MHz / one instruction per cycle label"
+      if (d != 2 * 2 * nth) print d + 0 " desktop rows, expected " 2 * 2 * nth
+      if (a != 2) print a + 0 " ARM926 rows, expected 2"
+    }' "$bench_md")
+  for want in "desktop | float | 320x240 | 1 |" "desktop | fixed | 640x480 | $(nproc) |" \
+              "ARM926, QEMU | fixed | 320x240 |" "ARM926, QEMU | soft-float | 320x240 |"; do
+    grep -qF "| $want" "$bench_md" || problems+="${problems:+$nl}no row '$want'"
+  done
+  grep -q 'bench: desktop, round 1/1, frame 3/3' "$T/bench-quick.err" && grep -q 'qemu-bench: float image.*frames in' "$T/bench-quick.err" ||
+    problems+="${problems:+$nl}no progress on standard error"
+  if [ -z "$problems" ]; then
+    pass "make bench's script (QUICK=1): $(grep -c '^| desktop' "$bench_md") desktop and $(grep -c '^| ARM926' "$bench_md") ARM926 rows, fps consistent with the times and instruction counts"
+  else
+    fail "make bench's script (QUICK=1) wrote a malformed $bench_md:"
+    sed 's/^/       /' <<<"$problems"
+  fi
+else
+  fail "make bench's script (QUICK=1 tests/bench_all.sh) failed:"
+  tail -5 "$T/bench-quick.err" | sed 's/^/       /'
+fi
+
 echo
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

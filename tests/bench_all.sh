@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# bench_all.sh: the intro's frames per second per platform in one table, desktop and ARM926 under QEMU, written to docs/bench.md (make bench).
+#
+# Usage: tests/bench_all.sh [-o FILE]        (default docs/bench.md; with QUICK=1 build/bench/bench-quick.md)
+# Desktop: tests/bench_intro.sh at 320x240 and 640x480, float and fixed, 1 thread and every
+# core, each sample frame rendered by every configuration in turn (the intro every STEP_S
+# seconds, ROUNDS rounds). ARM926: tests/qemu_bench.sh, the fixed and the soft-float image at
+# 320x240, instructions per frame counted by QEMU (frames QEMU_FRAMES = "FIRST LAST STEP").
+# Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
+# on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
+# seconds (make test). Progress goes to standard error; the file is also printed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+die() { printf 'bench: error: %s\n' "$*" >&2; exit 2; }
+SIZES=320x240,640x480
+CLOCK_MHZ=200   # the clock of tests/qemu_bench.sh's fps
+if [ "${QUICK:-0}" = 1 ]; then
+  out=build/bench/bench-quick.md
+  rounds=${ROUNDS:-1} step=${STEP_S:-24} qemu_frames=${QEMU_FRAMES:-0 24 24}
+else
+  out=docs/bench.md
+  rounds=${ROUNDS:-3} step=${STEP_S:-2} qemu_frames=${QEMU_FRAMES:-0 1200 24}
+fi
+case $# in
+  0) ;;
+  2) [ "$1" = -o ] || die "unknown option '$1' (usage: tests/bench_all.sh [-o FILE])"; out=$2 ;;
+  *) die "usage: tests/bench_all.sh [-o FILE]" ;;
+esac
+[[ "$rounds" =~ ^[1-9][0-9]*$ ]] || die "ROUNDS must be a whole number >= 1, not '$rounds'"
+[[ "$step" =~ ^[1-9][0-9]*$ ]] || die "STEP_S must be a whole number of seconds >= 1, not '$step'"
+read -r q_first q_last q_step extra <<<"$qemu_frames" || true
+[ -n "$q_step" ] && [ -z "${extra:-}" ] || die "QEMU_FRAMES must be 'FIRST LAST STEP', not '$qemu_frames'"
+for f in build/rt-float build/rt-fixed build/arm/intro-fixed.elf build/arm/intro-float.elf; do
+  [ -x "$f" ] || [ -f "$f" ] || die "$f is missing: run make all arm first"
+done
+mkdir -p build/bench "$(dirname "$out")"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+rows=$work/rows.tsv
+: >"$rows"
+cpu=$(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -1)
+cores=$(nproc)
+load=$(cut -d' ' -f1-3 /proc/loadavg)
+start=$(date +%s)
+echo "bench: $cpu, $cores cores, load average $load; desktop first, then QEMU" >&2
+
+BENCH_ROWS=$rows tests/bench_intro.sh "$SIZES" "$rounds" "$step" >"$work/desktop.txt"
+# shellcheck disable=SC2086  # QEMU_FRAMES is three words on purpose
+BENCH_ROWS=$rows tests/qemu_bench.sh $q_first $q_last $q_step >"$work/qemu.txt"
+took=$(($(date +%s) - start))
+q_n=$(grep -c '^frame=' build/bench/qemu-fixed.log)
+d_n=$(seq 0 "$step" 48 | wc -l)
+
+{
+  echo "# Frames per second per platform: the intro"
+  echo
+  echo "Written by \`make bench\` (\`tests/bench_all.sh\`${QUICK:+, QUICK=$QUICK}) on $(date -u '+%Y-%m-%d %H:%M UTC'), in $took s."
+  echo
+  echo "- CPU: $cpu, $cores cores (\`nproc\`); load average when it started: $load"
+  echo "- $(uname -sr), $(gcc --version | head -1) -O2; $(qemu-system-arm --version | head -1)"
+  echo
+  echo "| platform | build | size | threads | mean frame | worst frame | mean fps | worst-frame fps |"
+  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"
+  awk -F'\t' -v mhz=$CLOCK_MHZ '
+    $1 == "desktop" { printf "| desktop | %s | %s | %d | %.2f ms | %.2f ms | %.1f | %.1f |\n", $2, $3, $4, $5, $6, 1000 / $5, 1000 / $6 }
+    $1 == "arm926"  { printf "| ARM926, QEMU | %s | %s | %d | %.1f M instructions | %.1f M instructions | %.2f* | %.2f* |\n",
+                             ($2 == "float" ? "soft-float" : "fixed"), $3, $4, $5 / 1e6, $6 / 1e6, mhz * 1e6 / $5, mhz * 1e6 / $6 }' "$rows"
+  echo
+  echo "\\* ARM926 fps: **at a $CLOCK_MHZ MHz clock, assuming one instruction per cycle** (QEMU counts"
+  echo "instructions, not cycles; a real ARM926 spends more cycles than instructions on loads,"
+  echo "multiplies, taken branches and cache misses, so these figures are an upper bound)."
+  echo
+  echo "Desktop: the tracer's own time per frame (\`render --time T --size S --threads N --stats\`,"
+  echo "its \`ms=\`: rendering, without writing the file), default adaptive mode, the intro every"
+  echo "$step s (T = 0 to 48 s: $d_n frames), $rounds round(s); each sample frame is rendered by"
+  echo "every desktop configuration in turn, so all see the same machine load. Mean and worst are"
+  echo "over all frames and rounds. ARM926: the fixed-point and the soft-float image on QEMU's"
+  echo "versatilepb board under \`-icount shift=0\` (exact, repeatable counts), intro frames"
+  echo "$q_first to $q_last every $q_step ($q_n frames, at 25 frames per second of the intro)."
+  echo
+  grep -E 'fixed takes|speed-up over' "$work/desktop.txt" | sed 's/^/- /'
+  grep -E '^soft-float / fixed' "$work/qemu.txt" | sed 's/^/- ARM926: /'
+  echo
+  echo "## How to reproduce"
+  echo
+  echo '```sh'
+  echo "make bench                        # builds what is missing, then writes this file (80 s on the 2-core build machine)"
+  echo "QUICK=1 tests/bench_all.sh        # smoke run in seconds: build/bench/bench-quick.md (make test runs it)"
+  echo "ROUNDS=1 STEP_S=4 QEMU_FRAMES=\"0 1200 48\" tests/bench_all.sh -o /tmp/bench.md   # shorter"
+  echo "tests/bench_intro.sh 640x480 3 2  # the desktop part alone, any sizes (comma-separated)"
+  echo "make qemu-bench                   # the ARM926 part alone; per-frame counts in build/bench/qemu-*.log"
+  echo '```'
+  echo
+  echo "The desktop times depend on what else the machine is doing: the gain from a second thread"
+  echo "shrinks to nothing when the other core is busy (see the load average above). The QEMU"
+  echo "instruction counts do not depend on the machine."
+} >"$out"
+echo "bench: wrote $out in $took s" >&2
+cat "$out"
