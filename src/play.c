@@ -110,7 +110,7 @@ int play_run(const play_opts *o)
             int64_t pos = play_position(&clk, now);
             if (key == PLAT_KEY_QUIT)
                 quit = 1;
-            else if (key == PLAT_KEY_PAUSE) {
+            else if (key == PLAT_KEY_PAUSE && o->frames == 0) { /* scripted runs keep going */
                 play_set(&clk, now, pos);
                 clk.paused = !clk.paused;
             } else if (key == PLAT_KEY_SAMPLES)
