@@ -8,7 +8,7 @@
 # rt-fixed. Each sample frame (TIMES, seconds of the intro, at 320x240) is rendered by every
 # configuration in turn, ROUNDS rounds, on one thread (--threads 1 --stats: the tracer's ms=).
 # Error: rt-cmp against the reference (rt-float --mode full --min-contrib 0 --depth 8).
-# Defaults: TIMES="4 14 25 35 44", ROUNDS=5: 20 configurations, about 20 s on the 2-core
+# Defaults: TIMES="4 14 25 35 44", ROUNDS=5: 20 configurations, about 15 s on the 2-core
 # build machine. QUICK=1: two configurations on one frame, one round (make test's smoke run).
 # Progress goes to standard error; the table is also printed.
 set -euo pipefail
