@@ -84,6 +84,7 @@ fi_=0
 for t in $times; do
   fi_=$((fi_ + 1))
   ref=$work/ref-$t.png
+  # shellcheck disable=SC2086  # options are words on purpose
   build/rt-float render --time "$t" --size $SIZE $REF_OPTS -o "$ref" 2>/dev/null ||
     die "the reference frame at t=$t failed to render"
   for r in $(seq 1 "$rounds"); do
@@ -186,6 +187,7 @@ plot "< awk -F'\t' '\$3 == \"float\"' $pdat | sort -g -k1,1" using 1:2 with poin
 EOF
 [ -s "$plot" ] || die "gnuplot wrote no $plot"
 
+plot_rel=${plot#"$(dirname "$out")"/}   # the plot as the table's file links it
 base_ms=$(awk -F'\t' '$2 == "float" && $3 == "default" { print $5 }' "$rows")
 {
   echo "# Accuracy against time: the intro"
@@ -197,7 +199,7 @@ base_ms=$(awk -F'\t' '$2 == "float" && $3 == "default" { print $5 }' "$rows")
   echo "- Frames: the intro at t = ${times// /, } s, $SIZE; $rounds round(s), each frame rendered by every configuration in turn (the order reversed every other round)"
   echo "- Reference: \`rt-float render $REF_OPTS\` (every pixel, every ray, the deepest recursion)"
   echo
-  echo "![PSNR against time per frame](${plot#"$(dirname "$out")"/})"
+  echo "![PSNR against time per frame]($plot_rel)"
   echo
   echo "| build | configuration | render options | mean ms | worst-frame ms | x float default | mean PSNR | worst PSNR | over8 | worst-frame over8 | Pareto front |"
   echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
