@@ -7,6 +7,8 @@
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
 #                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
+#   make tradeoff   accuracy against time: render options one at a time, float and fixed, PSNR
+#                   against the reference and ms per frame: docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
@@ -72,7 +74,7 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
-.PHONY: all run test bench bench-demo bench-subsample bench-effects scene-programs stress clean distclean setup san \
+.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
         setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -279,6 +281,10 @@ soak: setup-test
 bench: setup-arm
 	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
 	@tests/bench_all.sh
+
+tradeoff: setup-test
+	@$(MAKE) --no-print-directory all
+	@tests/tradeoff.sh
 
 bench-demo: setup
 	@$(MAKE) --no-print-directory all

@@ -3,7 +3,7 @@
 #
 # Usage: ./setup.sh [--check] [--arm] [--test] [--gui]
 #   --arm     also the ARM926 cross toolchain and QEMU (make arm, make qemu-frames)
-#   --test    everything make test needs: --arm, clang (fuzzing), valgrind, time, Xvfb
+#   --test    everything make test needs: --arm, clang (fuzzing), valgrind, time, Xvfb, gnuplot
 #   --gui     also QEMU's display window (make qemu)
 #   --check   only report what is missing (exit 1 if anything is), change nothing.
 # Safe to run again: it does nothing when everything is already there.
@@ -16,9 +16,10 @@ deps="$top/build/deps"
 packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev libsdl2-dev xz-utils ca-certificates)
 # The ARM926 images and their emulator (--arm). What the test suite needs besides (--test):
 # clang and libclang-rt-14-dev build the scene fuzzer (libFuzzer), valgrind and time serve the
-# memcheck run and the soak, Xvfb an X server for the player. QEMU's window (--gui).
+# memcheck run and the soak, Xvfb an X server for the player, gnuplot make tradeoff's plot.
+# QEMU's window (--gui).
 arm_packages=(gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm)
-test_packages=(clang libclang-rt-14-dev valgrind time xvfb xauth)
+test_packages=(clang libclang-rt-14-dev valgrind time xvfb xauth gnuplot-nox)
 gui_packages=(qemu-system-gui)
 
 # libfixmath: the Debian source package version, and the upstream tarball it ships.

@@ -523,6 +523,46 @@ else
   tail -5 "$T/bench-quick.err" | sed 's/^/       /'
 fi
 
+# ---- make tradeoff's script, QUICK=1: runs end to end and writes a well-formed table ------------
+# Form, not timings: one row per configuration (float default, fixed full), ms > 0 with the worst
+# frame no faster than the mean, PSNR a number or inf (worst <= mean), over8 a share in 0..100 %,
+# and the plot written as a PNG.
+trade_md=$T/tradeoff-quick.md
+if QUICK=1 tests/tradeoff.sh -o "$trade_md" >"$T/tradeoff-quick.out" 2>"$T/tradeoff-quick.err"; then
+  problems=$(awk -F' *[|] *' '
+    function db(s) { sub(/ dB$/, "", s); return s }
+    function isdb(s) { return s ~ /^(inf|-?[0-9]+[.][0-9]+) dB$/ }
+    /^[|] build [|] configuration [|] render options [|] mean ms [|] worst-frame ms [|]/ { head = 1 }
+    /^[|] (float|fixed) [|]/ {
+      key = $2 "/" $3
+      if (key in seen) print "duplicate row " key
+      seen[key] = 1; n++
+      if (!($5 + 0 > 0 && $6 + 0 >= $5 + 0)) print "bad mean/worst ms: " $0
+      if (!isdb($8) || !isdb($9)) print "PSNR not a number or inf: " $0
+      else if (db($8) != "inf" && (db($9) == "inf" || db($9) + 0 > db($8) + 0)) print "worst PSNR above the mean: " $0
+      if ($10 !~ /^[0-9]+[.][0-9]+ %$/ || $10 + 0 > 100 || $11 !~ /^[0-9]+[.][0-9]+ %$/ || $11 + 0 < $10 + 0) print "bad over8: " $0
+    }
+    END {
+      if (!head) print "no table header"
+      if (n != 2) print n + 0 " rows, expected 2"
+      if (!(("float/default") in seen) || !(("fixed/full") in seen)) print "missing the float default or the fixed full row"
+    }' "$trade_md")
+  png=${trade_md%.md}.png
+  [ "$(head -c 8 "$png" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
+    problems+="${problems:+$nl}no PNG plot at $png"
+  grep -q 'tradeoff: frame 1/1 (t=14 s), round 1/1' "$T/tradeoff-quick.err" ||
+    problems+="${problems:+$nl}no progress on standard error"
+  if [ -z "$problems" ]; then
+    pass "make tradeoff's script (QUICK=1): $(grep -cE '^[|] (float|fixed) [|]' "$trade_md") rows with ms, PSNR and over8, and the plot"
+  else
+    fail "make tradeoff's script (QUICK=1) wrote a malformed $trade_md:"
+    sed 's/^/       /' <<<"$problems"
+  fi
+else
+  fail "make tradeoff's script (QUICK=1 tests/tradeoff.sh) failed:"
+  tail -5 "$T/tradeoff-quick.err" | sed 's/^/       /'
+fi
+
 echo
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
