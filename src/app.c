@@ -625,10 +625,7 @@ static int app_render(int argc, char **argv)
         us += app_us() - t0;
         app_add(&sums, &stats);
         if (traced)
-            for (int y = 0; y < o.height; y++)
-                for (int x = 0; x < o.width; x++)
-                    if (traced[(long)y * o.width + x])
-                        frame.pixels[(long)y * frame.stride + x] = 0xFFFFFF;
+            frame_mark_traced(frame.pixels, frame.stride, o.width, o.height, traced);
         if (o.checksum) {
             if (f >= 0)
                 printf("frame=%ld ", f);

@@ -23,4 +23,8 @@ void frame_free(frame_ctx *fc);
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,
                   uint32_t *pixels, int stride, rt_stats *stats, uint8_t *traced);
 
+/* Paints white every pixel of a width x height frame whose byte in `traced` (width per row) is
+ * set: the points adaptive subsampling traced (--show-samples, the player's S key). */
+void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, const uint8_t *traced);
+
 #endif

@@ -136,10 +136,7 @@ int play_run(const play_opts *o)
         frame_render(&fc, &scene, &view, &p, f.pixels, f.stride, &st, show ? traced : NULL);
         uint64_t dt = plat_time_ns() - t0;
         if (show)
-            for (int y = 0; y < o->height; y++)
-                for (int x = 0; x < o->width; x++)
-                    if (traced[(long)y * o->width + x])
-                        f.pixels[(long)y * f.stride + x] = 0xFFFFFF;
+            frame_mark_traced(f.pixels, f.stride, o->width, o->height, traced);
         if (plat_frame_present(&f, NULL) != 0) {
             rc = 1;
             break;

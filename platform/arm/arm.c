@@ -138,6 +138,20 @@ static int arm_write(int fd, const void *buf, uint32_t n)
     return arm_semi(ARM_SYS_WRITE, a) == 0 ? 0 : -1;
 }
 
+/* v in decimal at buf; returns the number of digits. */
+static uint32_t arm_dec(char *buf, uint32_t v)
+{
+    char d[10];
+    uint32_t k = 0, n = 0;
+    do {
+        d[k++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    while (k)
+        buf[n++] = d[--k];
+    return n;
+}
+
 /* "P6\nW H\n255\n" into buf; returns its length. */
 static uint32_t arm_ppm_header(char *buf, int w, int h)
 {
@@ -146,13 +160,8 @@ static uint32_t arm_ppm_header(char *buf, int w, int h)
     buf[n++] = 'P';
     buf[n++] = '6';
     for (int i = 0; i < 2; i++) {
-        char d[8];
-        int k = 0;
         buf[n++] = i ? ' ' : '\n';
-        for (int x = v[i]; k == 0 || x; x /= 10)
-            d[k++] = (char)('0' + x % 10);
-        while (k)
-            buf[n++] = d[--k];
+        n += arm_dec(buf + n, (uint32_t)v[i]);
     }
     for (const char *s = "\n255\n"; *s; s++)
         buf[n++] = *s;
@@ -222,12 +231,9 @@ static int arm_report_ram(void)
     for (int i = 0; i < 4; i++) {
         for (const char *s = names[i]; *s; s++)
             arm_putc(*s);
-        char d[12];
-        int k = 0;
-        for (uint32_t x = v[i]; k == 0 || x; x /= 10)
-            d[k++] = (char)('0' + x % 10);
-        while (k)
-            arm_putc(d[--k]);
+        char d[10];
+        for (uint32_t k = 0, n = arm_dec(d, v[i]); k < n; k++)
+            arm_putc(d[k]);
     }
     plat_log(" bytes");
     if (w == __stack_bottom) {
