@@ -13,49 +13,90 @@ void fx_events_reset(void)
 
 #if REAL_FIXED
 
-/* Starting values for 1/sqrt: entry i = round(2^31 / sqrt((i + 32.5) / 32)), i.e. 1/sqrt of the
- * middle of each of 96 intervals of [1, 4) in Q1.31. */
-static const uint32_t fx_rsqrt_tab[96] = {
-    2130900515u, 2098855072u, 2068213208u, 2038875364u, 2010751598u, 1983760420u,
-    1957827796u, 1932886296u, 1908874354u, 1885735628u, 1863418444u, 1841875310u,
-    1821062491u, 1800939636u, 1781469447u, 1762617387u, 1744351429u, 1726641819u,
-    1709460876u, 1692782810u, 1676583559u, 1660840642u, 1645533028u, 1630641020u,
-    1616146146u, 1602031062u, 1588279468u, 1574876026u, 1561806289u, 1549056637u,
-    1536614214u, 1524466875u, 1512603139u, 1501012140u, 1489683584u, 1478607716u,
-    1467775280u, 1457177486u, 1446805984u, 1436652834u, 1426710480u, 1416971728u,
-    1407429723u, 1398077927u, 1388910104u, 1379920300u, 1371102827u, 1362452250u,
-    1353963368u, 1345631207u, 1337451002u, 1329418191u, 1321528399u, 1313777432u,
-    1306161267u, 1298676040u, 1291318043u, 1284083712u, 1276969620u, 1269972473u,
-    1263089103u, 1256316458u, 1249651603u, 1243091706u, 1236634043u, 1230275986u,
-    1224014999u, 1217848637u, 1211774541u, 1205790433u, 1199894112u, 1194083452u,
-    1188356400u, 1182710970u, 1177145240u, 1171657354u, 1166245512u, 1160907976u,
-    1155643060u, 1150449133u, 1145324612u, 1140267967u, 1135277711u, 1130352405u,
-    1125490652u, 1120691096u, 1115952423u, 1111273357u, 1106652658u, 1102089122u,
-    1097581581u, 1093128899u, 1088729972u, 1084383727u, 1080089122u, 1075845140u,
+/* Starting values for 1/sqrt: entry i = round(2^15 / sqrt((i + 128.5) / 128)), i.e. 1/sqrt of the
+ * middle of each of 384 intervals of [1, 4), in Q1.15: within 2^-9 over each interval. */
+static const uint16_t fx_rsqrt_tab[384] = {
+    32704u, 32578u, 32453u, 32329u, 32207u, 32086u, 31966u, 31848u, 31731u, 31616u, 31501u, 31388u,
+    31276u, 31166u, 31056u, 30948u, 30840u, 30734u, 30629u, 30525u, 30422u, 30320u, 30219u, 30120u,
+    30021u, 29923u, 29826u, 29730u, 29635u, 29540u, 29447u, 29354u, 29263u, 29172u, 29082u, 28993u,
+    28905u, 28817u, 28731u, 28645u, 28560u, 28475u, 28392u, 28309u, 28227u, 28145u, 28064u, 27984u,
+    27905u, 27826u, 27748u, 27671u, 27594u, 27518u, 27442u, 27368u, 27293u, 27220u, 27147u, 27074u,
+    27002u, 26931u, 26860u, 26790u, 26720u, 26651u, 26582u, 26514u, 26447u, 26380u, 26313u, 26247u,
+    26182u, 26117u, 26052u, 25988u, 25924u, 25861u, 25799u, 25736u, 25674u, 25613u, 25552u, 25492u,
+    25432u, 25372u, 25313u, 25254u, 25196u, 25138u, 25080u, 25023u, 24966u, 24910u, 24854u, 24798u,
+    24743u, 24688u, 24633u, 24579u, 24525u, 24472u, 24419u, 24366u, 24313u, 24261u, 24209u, 24158u,
+    24107u, 24056u, 24005u, 23955u, 23905u, 23856u, 23807u, 23758u, 23709u, 23661u, 23613u, 23565u,
+    23518u, 23470u, 23423u, 23377u, 23331u, 23284u, 23239u, 23193u, 23148u, 23103u, 23058u, 23014u,
+    22969u, 22926u, 22882u, 22838u, 22795u, 22752u, 22709u, 22667u, 22625u, 22583u, 22541u, 22499u,
+    22458u, 22417u, 22376u, 22335u, 22295u, 22255u, 22215u, 22175u, 22135u, 22096u, 22057u, 22018u,
+    21979u, 21941u, 21902u, 21864u, 21826u, 21789u, 21751u, 21714u, 21677u, 21640u, 21603u, 21566u,
+    21530u, 21494u, 21458u, 21422u, 21386u, 21351u, 21315u, 21280u, 21245u, 21210u, 21176u, 21141u,
+    21107u, 21073u, 21039u, 21005u, 20972u, 20938u, 20905u, 20872u, 20839u, 20806u, 20773u, 20741u,
+    20708u, 20676u, 20644u, 20612u, 20580u, 20548u, 20517u, 20486u, 20454u, 20423u, 20392u, 20362u,
+    20331u, 20301u, 20270u, 20240u, 20210u, 20180u, 20150u, 20120u, 20091u, 20061u, 20032u, 20003u,
+    19974u, 19945u, 19916u, 19887u, 19859u, 19830u, 19802u, 19774u, 19746u, 19718u, 19690u, 19662u,
+    19635u, 19607u, 19580u, 19553u, 19526u, 19498u, 19472u, 19445u, 19418u, 19391u, 19365u, 19339u,
+    19312u, 19286u, 19260u, 19234u, 19208u, 19183u, 19157u, 19132u, 19106u, 19081u, 19056u, 19030u,
+    19005u, 18980u, 18956u, 18931u, 18906u, 18882u, 18857u, 18833u, 18809u, 18785u, 18760u, 18737u,
+    18713u, 18689u, 18665u, 18642u, 18618u, 18595u, 18571u, 18548u, 18525u, 18502u, 18479u, 18456u,
+    18433u, 18410u, 18388u, 18365u, 18343u, 18320u, 18298u, 18276u, 18253u, 18231u, 18209u, 18187u,
+    18166u, 18144u, 18122u, 18100u, 18079u, 18057u, 18036u, 18015u, 17994u, 17972u, 17951u, 17930u,
+    17909u, 17888u, 17868u, 17847u, 17826u, 17806u, 17785u, 17765u, 17744u, 17724u, 17704u, 17684u,
+    17664u, 17644u, 17624u, 17604u, 17584u, 17564u, 17545u, 17525u, 17505u, 17486u, 17467u, 17447u,
+    17428u, 17409u, 17390u, 17370u, 17351u, 17332u, 17314u, 17295u, 17276u, 17257u, 17238u, 17220u,
+    17201u, 17183u, 17164u, 17146u, 17128u, 17109u, 17091u, 17073u, 17055u, 17037u, 17019u, 17001u,
+    16983u, 16966u, 16948u, 16930u, 16913u, 16895u, 16877u, 16860u, 16843u, 16825u, 16808u, 16791u,
+    16773u, 16756u, 16739u, 16722u, 16705u, 16688u, 16671u, 16655u, 16638u, 16621u, 16604u, 16588u,
+    16571u, 16555u, 16538u, 16522u, 16505u, 16489u, 16473u, 16456u, 16440u, 16424u, 16408u, 16392u,
 };
+
+/* 2^62 / sqrt(x) for x in [2^62, 2^64), in (2^30, 2^31]: the table's 1/sqrt of X = x / 2^32
+ * (9 bits), refined by `steps` Newton steps y += y (1 - X y^2 / 2^92) / 2 (9 -> 17 -> 31 bits,
+ * where truncating x to X stops it). */
+static inline uint64_t fx_rsqrt62(uint64_t x, int steps)
+{
+    uint64_t X = x >> 32;
+    uint64_t y = (uint64_t)fx_rsqrt_tab[(x >> 55) - 128] << 16;
+    for (int i = 0; i < steps; i++) {
+        uint64_t y2 = (y * y) >> 30;
+        uint64_t xy2 = (X * y2) >> 32;
+        y = (y * ((3u << 30) - xy2)) >> 31;
+    }
+    return y;
+}
+
+/* 2^64 / sqrt(x) for x in [2^62, 2^64), in (2^32, 2^33], to about 2^-33 relative (within a
+ * quarter unit of a Q2.30 result it scales): one Newton step at 32-bit precision, then a
+ * second with the residual 1 - x y^2 formed from every bit of x and y^2. */
+static inline uint64_t fx_rsqrt64(uint64_t x)
+{
+    uint64_t y = fx_rsqrt62(x, 1); /* 2^62 / sqrt(x) within 2^-17 */
+    uint64_t q = y * y;            /* below 2^62 */
+    uint64_t xh = x >> 32, xl = x & 0xFFFFFFFFu, qh = q >> 32, ql = q & 0xFFFFFFFFu;
+    /* x q / 2^64 = 2^60 (1 - e / 2^60), |e| < 2^45; the dropped xl ql / 2^64 is below 1 */
+    uint64_t t = xh * qh + ((xh * ql) >> 32) + ((xl * qh) >> 32);
+    int64_t e = (int64_t)(((uint64_t)1 << 60) - t);
+    /* y (1 + e / 2^61), scaled by 4: y e / 2^59, with e / 2^14 below 2^31 */
+    return (y << 2) + (uint64_t)(((e >> 14) * (int64_t)y) >> 45);
+}
 
 uint32_t fx_isqrt64(uint64_t n)
 {
     if (n == 0)
         return 0;
-    /* Division-free: normalise n to [2^62, 2^64), refine 1/sqrt by two Newton steps from the
-     * table (8 -> 16 -> 30 bits), multiply back, correct once by the residual, then fix the
-     * last unit exactly. A digit-by-digit loop gives the same results but mispredicts a
-     * branch on each of its ~30 steps. */
+    /* Division-free: normalise n to [2^62, 2^64), 1/sqrt from fx_rsqrt62, multiply back,
+     * correct once by the residual, then fix the last unit exactly. A digit-by-digit loop
+     * gives the same results but mispredicts a branch on each of its ~30 steps. */
     int k = __builtin_clzll(n) & ~1;
     uint64_t x = n << k;
     uint32_t X = (uint32_t)(x >> 32);
-    uint64_t y = fx_rsqrt_tab[(x >> 57) - 32];
-    for (int i = 0; i < 2; i++) {
-        uint64_t y2 = (y * y) >> 30;
-        uint64_t xy2 = ((uint64_t)X * y2) >> 32;
-        y = (y * ((3u << 30) - xy2)) >> 31;
-    }
+    uint64_t y = fx_rsqrt62(x, 1); /* 17 bits: the residual step below doubles them */
     uint64_t s = ((uint64_t)X * y) >> 30;
     if (s > UINT32_MAX)
         s = UINT32_MAX;
+    /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
     int64_t r = (int64_t)(x - s * s);
-    s = (uint64_t)((int64_t)s + (((r >> 8) * (int64_t)y) >> 55));
+    s = (uint64_t)((int64_t)s + (((r >> 16) * (int64_t)y) >> 47));
     uint64_t rr = s >> (k >> 1);
     if (rr > UINT32_MAX)
         rr = UINT32_MAX;
@@ -125,12 +166,12 @@ static int64_t fx_scale2(int64_t v, int s)
 }
 
 /* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
- * in [2, 4), entry y = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
+ * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
  * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
  * product fits. */
 static inline uint64_t fx_recip63(uint64_t m)
 {
-    uint64_t y = fx_rsqrt_tab[(m >> 25) - 32];
+    uint64_t y = (uint64_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
     uint64_t z = (y * y) >> 29;
     for (int i = 0; i < 3; i++) {
         int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
@@ -165,27 +206,6 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
     return q;
 }
 
-uint64_t fx_recip61(uint32_t l)
-{
-    /* z ~ 2^63 / M for M = l normalised to [2^31, 2^32) */
-    int k = __builtin_clz(l); /* 1 or 2 */
-    uint64_t z = fx_recip63((uint64_t)l << k);
-    /* (2^61 + h) / l = (2^61 + h) 2^k / M ~ z 2^(k-2) + h z / 2^(63-k), h = l/2; then the
-     * exact quotient by the remainder (a few steps at most). */
-    uint64_t h = l >> 1, n = ((uint64_t)1 << 61) + h;
-    uint64_t q = (z >> (2 - k)) + ((h * z) >> (63 - k));
-    int64_t r = (int64_t)(n - q * l);
-    while (r < 0) {
-        q--;
-        r += l;
-    }
-    while (r >= (int64_t)l) {
-        q++;
-        r -= l;
-    }
-    return q;
-}
-
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     dir3 d = {0, 0, 0};
@@ -203,24 +223,28 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
         return d;
     }
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
-     * ones lose only bits far below the result's precision, and the sum of squares stays
-     * below 3 * 2^60. */
+     * ones lose only bits far below the result's precision, and the sum of squares stays in
+     * [2^58, 3 * 2^60). */
     int s = __builtin_clzll(m) - 34;
     int64_t sx = fx_scale2(x, s), sy = fx_scale2(y, s), sz = fx_scale2(z, s);
     uint64_t sum = (uint64_t)(sx * sx) + (uint64_t)(sy * sy) + (uint64_t)(sz * sz);
-    uint32_t l = fx_isqrt64(sum); /* in [2^29, 2^31) */
-    /* inv = 2^61 / l rounded, at most 2^32; each sx * inv is below 2^62. */
-#if FX_SOFT_DIVIDE
-    int64_t inv = (int64_t)fx_recip61(l);
-#else
-    int64_t inv = (int64_t)((((uint64_t)1 << 61) + l / 2) / l);
-#endif
-    d.x = (unit)fx_round_shift(sx * inv, 31);
-    d.y = (unit)fx_round_shift(sy * inv, 31);
-    d.z = (unit)fx_round_shift(sz * inv, 31);
+    /* No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64) (k = 2 or 4),
+     * r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each component
+     * of the unit vector, in Q2.30, is sx r / 2^(34 - k/2), below 2^63 before the shift. */
+    int k = __builtin_clzll(sum) & ~1;
+    uint64_t xs = sum << k;
+    uint64_t r = fx_rsqrt64(xs);
+    int sh = 34 - k / 2;
+    d.x = (unit)fx_round_shift(sx * (int64_t)r, sh);
+    d.y = (unit)fx_round_shift(sy * (int64_t)r, sh);
+    d.z = (unit)fx_round_shift(sz * (int64_t)r, sh);
     if (len) {
-        /* |v| = l * 2^-s in units of 2^-frac; as Q16.16 that is l * 2^(16 - frac - s). */
-        int sh = 16 - frac - s;
+        /* sqrt(xs) = xs / sqrt(xs) ~ (xs / 2^32) (r / 2) / 2^31, sqrt(sum) = sqrt(xs) 2^(-k/2):
+         * l in [2^29, 2^31), to about a unit. |v| = l * 2^-s in units of 2^-frac; as Q16.16
+         * that is l * 2^(16 - frac - s). */
+        uint64_t p = ((xs >> 32) * (r >> 1)) >> (30 + k / 2);
+        uint32_t l = (uint32_t)((p + 1) >> 1);
+        sh = 16 - frac - s;
         if (sh >= 32)
             *len = fx_sat(INT64_MAX);
         else if (sh >= 0)

@@ -54,10 +54,16 @@ void fx_events_reset(void);
 typedef fix16_t real; /* Q16.16 */
 typedef int32_t unit; /* Q2.30 */
 typedef int64_t wide; /* Q32.32 */
+typedef struct rinv { /* 1/r prepared for d3_norm_near: 2^s / r, and 2 r */
+    uint64_t m;
+    int s;
+    int64_t lim;
+} rinv;
 #else
 typedef float real;
 typedef float unit;
 typedef float wide;
+typedef float rinv;
 #endif
 
 typedef struct vec3 {

@@ -33,10 +33,6 @@
 #define FX_SOFT_DIVIDE 0
 #endif
 
-/* (2^61 + floor(l / 2)) / l rounded down, i.e. 2^61 / l rounded to nearest, for l in
- * [2^29, 2^31), without a divide instruction (fx_norm64's reciprocal). */
-uint64_t fx_recip61(uint32_t l);
-
 /* n / m rounded down, for n < 2^62 and m >= 1, without a divide instruction when the quotient
  * is below about 2^31 (larger ones fall back to the library's division). */
 uint64_t fx_udiv64(uint64_t n, uint32_t m);
@@ -382,6 +378,12 @@ static inline real v3_dot_d(vec3 v, dir3 d)
     return fx_sat(fx_round_shift(s, 30));
 }
 
+/* Is v . d > 0, exactly (no rounding of the sum)? */
+static inline int v3_faces(vec3 v, dir3 d)
+{
+    return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
+}
+
 static inline unit d3_dot(dir3 a, dir3 b)
 {
     int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
@@ -429,9 +431,10 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
     return fx_norm64(x, y, z, 60, len);
 }
 
-/* Unit vector along a Q.60 vector that is already unit to within ~2^-20 (reflected and
- * refracted directions): rounded to Q2.30 and corrected by one first-order step
- * v * (1 - e/2), e = |v|^2 - 1; anything further from unit goes through fx_norm64. */
+/* Unit vector along a Q.60 vector that is already unit to within 2^-12 (reflected and
+ * refracted directions, a sphere's p - c times 1/r): rounded to Q2.30 and corrected by
+ * v * (1 - e/2 + 3e^2/8), e = |v|^2 - 1, the series of 1/sqrt(1 + e) to second order (what it
+ * leaves out is below 5/16 |e|^3 <= 2^-37); anything further from unit goes through fx_norm64. */
 static inline dir3 fx_renorm60(int64_t x, int64_t y, int64_t z)
 {
     const uint64_t two = (uint64_t)1 << 61; /* 2.0 in Q.60: beyond it the rounding below would not fit */
@@ -442,13 +445,41 @@ static inline dir3 fx_renorm60(int64_t x, int64_t y, int64_t z)
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
     int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
-    if (__builtin_expect(e > ((int64_t)1 << 40) || e < -((int64_t)1 << 40), 0))
+    if (__builtin_expect(e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48), 0))
         return fx_norm64(x, y, z, 60, 0);
-    int64_t h = e >> 9; /* below 2^31 */
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * h, 52),
-              b - (int32_t)fx_round_shift((int64_t)b * h, 52),
-              c - (int32_t)fx_round_shift((int64_t)c * h, 52)};
+    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56 */
+    int64_t e40 = e >> 20;
+    int64_t g = (e40 >> 1) - ((3 * ((e40 * e40) >> 40)) >> 3); /* below 2^27 */
+    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
+              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
+              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
     return d;
+}
+
+/* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 31 + bits of r (so m is in
+ * (2^31, 2^32]); m = 0 for r <= 0. Costs a 64-bit division: made once per object and frame. */
+static inline rinv r_inv_len(real r)
+{
+    rinv k = {0, 0, 0};
+    if (r <= 0)
+        return k;
+    k.s = 31 + (32 - __builtin_clz((uint32_t)r));
+    k.m = (((uint64_t)1 << k.s) + (uint64_t)r / 2) / (uint64_t)r;
+    k.lim = (int64_t)r * 2;
+    return k;
+}
+
+/* Unit vector along v whose length is within about 2^-13 of the r that k was made from (a
+ * point on a sphere minus its centre): v * (1/r) in Q.60, then fx_renorm60's second-order
+ * correction, with no square root or division. Any other v gets d3_norm's result. */
+static inline dir3 d3_norm_near(vec3 v, rinv k)
+{
+    if (k.m == 0 || v.x > k.lim || v.x < -k.lim || v.y > k.lim || v.y < -k.lim ||
+        v.z > k.lim || v.z < -k.lim)
+        return fx_norm64(v.x, v.y, v.z, 16, 0);
+    /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^60; times 2^(60 - s) it is v.x / r in Q.60 */
+    int64_t f = (int64_t)1 << (60 - k.s);
+    return fx_renorm60(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
 }
 
 /* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */

@@ -277,6 +277,12 @@ static inline real v3_dot_d(vec3 v, dir3 d)
     return fl_chk(v.x * d.x + v.y * d.y + v.z * d.z);
 }
 
+/* Is v . d > 0? */
+static inline int v3_faces(vec3 v, dir3 d)
+{
+    return v.x * d.x + v.y * d.y + v.z * d.z > 0;
+}
+
 static inline unit d3_dot(dir3 a, dir3 b)
 {
     return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z);
@@ -308,6 +314,19 @@ static inline dir3 fl_norm(float x, float y, float z, real *len)
 static inline dir3 d3_norm(vec3 v, real *len)
 {
     return fl_norm(v.x, v.y, v.z, len);
+}
+
+/* 1/r prepared for d3_norm_near (the float build normalises exactly and does not use it). */
+static inline rinv r_inv_len(real r)
+{
+    return r;
+}
+
+/* Unit vector along v, whose length is about the r that k was made from. */
+static inline dir3 d3_norm_near(vec3 v, rinv k)
+{
+    (void)k;
+    return fl_norm(v.x, v.y, v.z, 0);
 }
 
 static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)

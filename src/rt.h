@@ -66,6 +66,7 @@ typedef struct rt_object {
     vec3 center;      /* sphere */
     real radius;
     wide radius2;
+    rinv inv_radius;  /* sphere: for its normals (d3_norm_near), filled by rt_scene_prepare */
     vec3 axis;        /* plane: normal as given (any length) */
     real offset;      /* plane: points p with p . unit(axis) = offset */
     dir3 normal;      /* plane: unit(axis), filled by rt_scene_prepare */

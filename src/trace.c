@@ -57,12 +57,13 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
     for (int i = 0; i < s->nlights; i++) {
         const rt_light *li = &s->lights[i];
-        /* A light exactly on the surface point has no direction: it lights the point at a
-         * grazing angle, i.e. not at all (l = 0 gives n . l = 0). */
+        /* A light behind the surface, or exactly on the point (no direction: it lights the
+         * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
+         * cost of a normalisation. */
         vec3 to_light = v3_sub(li->pos, p);
         real dist = 0;
         dir3 l = {0, 0, 0};
-        if (!v3_is_zero(to_light))
+        if (v3_faces(to_light, n))
             l = d3_norm(to_light, &dist);
         unit ndl = d3_dot(n, l);
         uint8_t state = 0;

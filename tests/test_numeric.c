@@ -993,7 +993,7 @@ static uint64_t ref_isqrt(uint64_t n)
 #endif
 
 #if REAL_FIXED /* fx_isqrt64, fx_norm64 and fx_renorm60 exist in the fixed build only */
-/* The fixed build's own parts: fx_isqrt64, fx_recip61, fx_norm64, fx_renorm60, and r_mul against
+/* The fixed build's own parts: fx_isqrt64, fx_norm64, fx_renorm60, and r_mul against
  * libfixmath's fix16_mul bit for bit. */
 static void test_fixed_internals(void **state)
 {
@@ -1120,32 +1120,6 @@ static void test_fixed_internals(void **state)
         uint32_t r = fx_isqrt64(n);
         if (r != ref_isqrt(n))
             check_i("fx_isqrt64", (double)ref_isqrt(n), r, 0.0, "%llu", (unsigned long long)n);
-    }
-
-    /* fx_recip61 (the ARM926's division-free reciprocal in fx_norm64) against the division it
-     * replaces: the ends of its range, the table's interval boundaries and their neighbours,
-     * and random l. An approximation off by a few units would fail here. */
-    for (int k = 0; k < 400000; k++) {
-        uint64_t l;
-        if (k < 1000)
-            l = ((uint64_t)1 << 29) + (uint64_t)k; /* lowest end */
-        else if (k < 2000)
-            l = ((uint64_t)1 << 31) - 1 - (uint64_t)(k - 1000); /* highest end */
-        else if (k < 2000 + 64 * 2 * 7) {
-            int j = k - 2000; /* 1/32 steps of [1, 4) as the table divides it, +-3 */
-            l = ((uint64_t)1 << (29 + (j / 7) / 64)) * (64 + (uint64_t)((j / 7) % 64)) / 64 +
-                (uint64_t)(j % 7) - 3;
-            if (l < ((uint64_t)1 << 29) || l >= ((uint64_t)1 << 31))
-                continue;
-        } else
-            l = ((uint64_t)1 << 29) + rng() % (((uint64_t)3) << 29);
-        uint64_t want = (((uint64_t)1 << 61) + l / 2) / l;
-        uint64_t got = fx_recip61((uint32_t)l);
-        if (got != want) {
-            n_failed++;
-            print_error("fx_recip61(%llu) = %llu, want %llu\n", (unsigned long long)l,
-                        (unsigned long long)got, (unsigned long long)want);
-        }
     }
 
     /* fx_udiv64 (the ARM926's division in r_div_u) against the division: quotients of every
