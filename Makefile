@@ -71,7 +71,7 @@ ifeq ($(shell uname -m),x86_64)
 FIXED_CORE_GUARD := -mgeneral-regs-only
 endif
 
-HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec
+HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec $(BUILD)/rt-edges
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
@@ -95,7 +95,7 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c tests/fuzz_scene.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c src/tools/edges.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -137,6 +137,11 @@ $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image
 
 # The scene compiler runs at build time, so it is built from the float objects.
 $(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o \
+                   $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
+	$(CC) $(OPT) -o $@ $^ -lm
+
+# The subsampling bound (tests/bench_subsample.sh): float, like the reference it measures.
+$(BUILD)/rt-edges: $(BUILD)/obj/float/src/tools/edges.o $(BUILD)/obj/float/src/scn_parse.o \
                    $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 

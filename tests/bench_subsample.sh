@@ -6,7 +6,9 @@
 #   full+rc    every pixel traced, adaptive recursion control at its default (--mode full)
 #   adaptive   the defaults: adaptive subsampling and recursion control
 # and prints points traced, rays by kind, ms per frame (the tracer's own --stats ms, without
-# image encoding) and PSNR against the reference frame. Ratios are full / adaptive.
+# image encoding) and PSNR against the reference frame. Ratios are full / adaptive. Per size it
+# also prints the bound build/rt-edges gives: the x_samples of tracing nothing but the grid's
+# corners and the pixels on the edges the split criteria see.
 # Usage: tests/bench_subsample.sh [ROUNDS] [SIZES...]   (defaults: 3 rounds, 320x240 640x480)
 set -eu
 cd "$(dirname "$0")/.."
@@ -85,6 +87,18 @@ $(($4 + $(sed -n 's/^rays_refract=//p' <<<"$s")))"
          }'
     done
   done
+  # What any refinement of these squares must trace at the least: the pixels on an edge the
+  # split criteria see, plus the grid's corners (src/tools/edges.c).
+  bsum=0 esum=0
+  for t in $times; do
+    b=$(build/rt-edges "$scene" "$size" "$t")
+    bsum=$(awk -v a="$bsum" -v b="$(sed -n 's/^bound_x_samples=//p' <<<"$b")" 'BEGIN { print a + b }')
+    esum=$(awk -v a="$esum" -v b="$(sed -n 's/^edge_share=//p' <<<"$b")" 'BEGIN { print a + b }')
+  done
+  awk -v size="$size" -v b="$bsum" -v e="$esum" -v nt="$nt" 'BEGIN {
+    printf "%-8s bound: %.1f%% of the pixels lie on an edge the criteria see; tracing only them and the corners: x_samples %.2f\n",
+      size, 100 * e / nt, b / nt }'
   unset ms worst st psum pmin
 done
 echo "samples, rays: per frame, mean over the times; x_samples, x_time: full / this; psnr: against full, dB"
+echo "bound: build/rt-edges on the float frames traced in full, mean over the times"

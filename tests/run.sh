@@ -398,6 +398,23 @@ else
   fail "rt-scenec failed write: exit $rc: $err; left: $(ls -A "$T/scw")"
 fi
 
+# ---- rt-edges: the bound on adaptive subsampling (tests/bench_subsample.sh prints it) -----------
+# A lone plane seen from above (no horizon), no texture, no highlight, one light: no edge at all,
+# so only the grid's corners must be traced (41 x 31 at 320x240, grid 8). The demo scene: edges,
+# and the bound it prints is pixels / points that must be traced.
+printf '%s\n' "camera eye 0 6 1 at 0 0 0" "light l pos 0 5 0 color 1 1 1" "material m specular 0" \
+  "plane p material m normal 0 1 0 offset 0" >"$T/flat.scene"
+flat=$($B/rt-edges "$T/flat.scene" 320x240 0)
+demo=$($B/rt-edges scenes/demo.scene 160x120 4)
+kv() { sed -n "s/^$1=//p" <<<"$2"; }
+if [ "$(kv edge_pixels "$flat")" = 0 ] && [ "$(kv must_trace "$flat")" = 1271 ] &&
+   [ "$(kv edge_pixels "$demo")" -gt 1000 ] && [ "$(kv must_trace "$demo")" -ge "$(kv edge_pixels "$demo")" ] &&
+   awk -v b="$(kv bound_x_samples "$demo")" -v m="$(kv must_trace "$demo")" 'BEGIN { exit !(b > 1 && (19200 / m - b) ^ 2 < 0.0001) }'; then
+  pass "rt-edges: a flat plane has no edge (1271 points: the 8x8 grid's corners); the demo scene at 160x120 has $(kv edge_pixels "$demo") edge pixels, bound x_samples $(kv bound_x_samples "$demo")"
+else
+  fail "rt-edges: flat: $(tr '\n' ' ' <<<"$flat"); demo: $(tr '\n' ' ' <<<"$demo")"
+fi
+
 # ---- the scene fuzzer: a bounded smoke run (make fuzz runs it longer) ----------------------------
 # tests/fuzz.sh replays every kept crash of tests/fuzz-regress/ first, then fuzzes each build from
 # the seeds; any crash, hang (10 s), leak, sanitizer report or numeric event fails.
