@@ -1,7 +1,8 @@
-# Makefile: builds fixray's host programs (rt-float, rt-fixed, rt-cmp) and runs the tests.
+# Makefile: builds fixray's host programs (rt-float, rt-fixed, rt-cmp, rt-scenec, rt-edges) and runs the tests.
 #
-#   make            build/rt-float, build/rt-fixed, build/rt-cmp
-#   make run        set up if needed, render stills of the intro headless with both builds
+#   make            build/rt-float, build/rt-fixed, build/rt-cmp, build/rt-edges, the intro players
+#   make run        set up if needed, play the intro in a window (without a display: render it
+#                   headless into build/out/intro/ with a progress bar, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
