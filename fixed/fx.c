@@ -97,15 +97,14 @@ uint32_t fx_isqrt64(uint64_t n)
     /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
     int64_t r = (int64_t)(x - s * s);
     s = (uint64_t)((int64_t)s + (((r >> 16) * (int64_t)y) >> 47));
-    uint64_t rr = s >> (k >> 1);
+    /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
+     * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
+    int h = k >> 1;
+    uint64_t rr = h ? (s + ((uint64_t)1 << (h - 1))) >> h : s;
     if (rr > UINT32_MAX)
         rr = UINT32_MAX;
-    uint64_t sq = rr * rr;
-    rr -= sq > n;
-    sq = rr * rr;
-    rr += (n - sq) > 2 * rr;
-    sq = rr * rr;
-    rr += (n - sq) > rr; /* round to nearest: n - rr^2 > rr means sqrt(n) > rr + 1/2 */
+    int64_t d = (int64_t)(n - rr * rr); /* |d| < 2^34: wraps back into range */
+    rr += (d > (int64_t)rr) - (d <= -(int64_t)rr);
     return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
 }
 
