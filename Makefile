@@ -7,7 +7,7 @@
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
 #                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
-#   make tradeoff   accuracy against time: render options one at a time, float and fixed, PSNR
+#   make tradeoff   accuracy against time: render options one at a time, float, fixed, fixed16, PSNR
 #                   against the reference and ms per frame: docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
