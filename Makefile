@@ -1,6 +1,7 @@
 # Makefile: builds fixray's host programs (rt-float, rt-fixed, rt-cmp, rt-scenec, rt-edges) and runs the tests.
 #
-#   make            build/rt-float, build/rt-fixed, build/rt-cmp, build/rt-edges, the intro players
+#   make            build/rt-float, build/rt-fixed, build/rt-fixed16, build/rt-cmp, build/rt-edges,
+#                   the intro players
 #   make run        set up if needed, play the intro in a window (without a display: render it
 #                   headless into build/out/intro/ with a progress bar, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
@@ -8,7 +9,7 @@
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
 #                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
-#   make tradeoff   accuracy against time: render options one at a time, float and fixed, PSNR
+#   make tradeoff   accuracy against time: render options one at a time, float, fixed, fixed16, PSNR
 #                   against the reference and ms per frame: docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
@@ -25,7 +26,10 @@
 #
 # Variants (object trees under build/obj/<variant>):
 #   float, fixed          -O2, the programs users run
-#   san-float, san-fixed  -O1 with AddressSanitizer + UBSan and numeric event counting: tests
+#   fixed16               -O2, fixed point with unit vectors in Q16.16 (-DFX_UNIT_FRAC=16): the
+#                         cheaper, less precise variant (docs/numerics.md)
+#   san-float, san-fixed, san-fixed16  -O1 with AddressSanitizer + UBSan and numeric event
+#                         counting: tests
 #   fuzz-float, fuzz-fixed  clang -O1, libFuzzer + ASan + UBSan + numeric event counting
 
 BUILD := build
@@ -64,7 +68,11 @@ APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c src/out
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
 SDL_LIBS = $(shell pkg-config --libs sdl2)
 TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability
-TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS))
+# Tests of the fixed-point format itself, built in san-fixed and san-fixed16.
+FIXED_TESTS := test_format
+TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS) $(FIXED_TESTS))
+# The cheaper fixed-point variant: unit in Q16.16 instead of Q2.30.
+FIXED16_DEFS := -DFX_UNIT_FRAC=16
 
 # On x86-64 the fixed core is compiled without access to floating-point registers: any float
 # or double that creeps into it stops the build.
@@ -72,8 +80,10 @@ ifeq ($(shell uname -m),x86_64)
 FIXED_CORE_GUARD := -mgeneral-regs-only
 endif
 
-HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-cmp $(BUILD)/rt-scenec $(BUILD)/rt-edges
-SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS)))
+HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-fixed16 $(BUILD)/rt-cmp $(BUILD)/rt-scenec \
+              $(BUILD)/rt-edges
+SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS))) \
+             $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS)))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
         setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
@@ -120,8 +130,10 @@ endef
 
 $(eval $(call variant,float,0,$(OPT),,0))
 $(eval $(call variant,fixed,1,$(OPT),$(FIXED_CORE_GUARD),0))
+$(eval $(call variant,fixed16,1,$(OPT) $(FIXED16_DEFS),$(FIXED_CORE_GUARD),0))
 $(eval $(call variant,san-float,0,$(SAN),,1))
 $(eval $(call variant,san-fixed,1,$(SAN),,1))
+$(eval $(call variant,san-fixed16,1,$(SAN) $(FIXED16_DEFS),,1))
 $(eval $(call variant,fuzz-float,0,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 $(eval $(call variant,fuzz-fixed,1,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 
@@ -131,6 +143,9 @@ $(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
+	$(CC) $(OPT) -o $@ $^ $(LIBS)
+
+$(BUILD)/rt-fixed16: $(CORE_OBJS_fixed16) $(APP_OBJS_fixed16) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o $(BUILD)/obj/float/src/outpath.o
@@ -161,6 +176,7 @@ $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scn
 endef
 $(eval $(call san_progs,san-float))
 $(eval $(call san_progs,san-fixed))
+$(eval $(call san_progs,san-fixed16))
 
 # The randomised property test at -O2, for long runs (make stress).
 $(BUILD)/stress-float: $(BUILD)/obj/float/tests/test_stability.o $(CORE_OBJS_float)
@@ -209,14 +225,17 @@ ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sectio
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/intro.c platform/arm/arm.c $(GEN)/scene_intro.c
 ARM_ELFS := $(BUILD)/arm/intro-fixed.elf $(BUILD)/arm/intro-float.elf
+# The cheaper fixed-point variant's image (make arm builds it too; qemu.sh bench fixed16).
+ARM_ELF_FIXED16 := $(BUILD)/arm/intro-fixed16.elf
 
-# $(1) real (fixed or float), $(2) REAL_FIXED, $(3) libfixmath archive or empty
+# $(1) real (fixed, fixed16 or float), $(2) REAL_FIXED, $(3) libfixmath archive or empty,
+# $(4) extra flags
 define arm_variant
 ARM_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/%.o,$(ARM_SRCS)) $(BUILD)/obj/arm-$(1)/start.o
 
 $(BUILD)/obj/arm-$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 
 $(BUILD)/obj/arm-$(1)/start.o: platform/arm/start.S
 	@mkdir -p $$(@D)
@@ -237,6 +256,7 @@ $(BUILD)/arm/intro-$(1).elf: $$(ARM_OBJS_$(1)) $(3) platform/arm/link.ld
 endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
+$(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
@@ -320,7 +340,7 @@ FRAMES ?= 0 250 500
 QEMU_BENCH ?= 0 1200 24
 
 arm: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16)
 	@tests/arm_check.sh --print
 
 qemu: setup-gui
@@ -336,7 +356,7 @@ qemu-bench: setup-arm
 	@tests/qemu_bench.sh $(QEMU_BENCH)
 
 clean:
-	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
+	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
 	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/stress-fixed \
 	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
 	       $(PLAYERS)

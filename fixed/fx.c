@@ -108,7 +108,7 @@ uint32_t fx_isqrt64(uint64_t n)
     return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
 }
 
-/* Taylor series of sin and cos at x (Q2.30, |x| <= pi/4): errors below 2e-9. */
+/* Taylor series of sin and cos at x (a unit, |x| <= pi/4): errors below 2e-9 in Q2.30. */
 static void fx_sincos_series(unit x, unit *s, unit *c)
 {
     unit x2 = u_mul(x, x);
@@ -135,9 +135,10 @@ void u_sincos_deg(real deg, unit *s, unit *c)
     int swap = a > R(45.0);
     if (swap)
         a = R(90.0) - a; /* [0, 45] */
-    /* a degrees in radians as Q2.30: a_raw * (pi / 180) * 2^14, K = pi / 180 * 2^44. */
+    /* a degrees in radians as a unit: a_raw * (pi / 180) * 2^(FX_UF - 16), K = pi / 180 * 2^44,
+     * the product in Q.60 (below 2^60). */
     const int64_t k = 307041569098LL;
-    unit x = (unit)fx_round_shift((int64_t)a * k, 30);
+    unit x = (unit)fx_round_shift((int64_t)a * k, 60 - FX_UF);
     unit sn, cs;
     fx_sincos_series(x, &sn, &cs);
     if (swap) {
@@ -156,12 +157,6 @@ void u_sincos_deg(real deg, unit *s, unit *c)
 static uint64_t fx_abs64(int64_t v)
 {
     return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
-
-/* Scale v by 2^s (s may be negative; a left shift never overflows here, see below). */
-static int64_t fx_scale2(int64_t v, int s)
-{
-    return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
 }
 
 /* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
@@ -203,6 +198,13 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
         r -= m;
     }
     return q;
+}
+
+#if FX_UF == 30
+/* Scale v by 2^s (s may be negative; a left shift never overflows here, see below). */
+static int64_t fx_scale2(int64_t v, int s)
+{
+    return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
 }
 
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
@@ -255,5 +257,104 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
     }
     return d;
 }
+
+#else
+/* 2^46 / sqrt(x) for x in [2^30, 2^32), in (2^30, 2^31]: the table's 1/sqrt and one Newton step
+ * in 32 x 32-bit products, to about 2^-17 relative: enough for a Q16.16 result. */
+static inline uint32_t fx_rsqrt32(uint32_t x)
+{
+    uint32_t y = fx_rsqrt_tab[(x >> 23) - 128]; /* 2^30 / sqrt(x) within 2^-9 */
+    uint32_t t = (uint32_t)(((uint64_t)x * (y * y)) >> 30); /* x y^2 / 2^30, about 2^30 */
+    uint64_t r = ((uint64_t)y * ((3u << 30) - t)) >> 15;
+    return r > INT32_MAX ? INT32_MAX : (uint32_t)r;
+}
+
+/* The unit vector, and the length (len may be NULL), of (x, y, z) 2^-s in units of 2^-frac,
+ * where the largest of |x|, |y|, |z| is in [2^15, 2^16]: the squares and their sum from 32-bit
+ * values, 1/sqrt by fx_rsqrt32, no 64 x 64-bit product. */
+static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int frac, real *len)
+{
+    dir3 d;
+    /* sum in [2^30, 3 * 2^32]: xs = sum / 4^j in [2^30, 2^32) */
+    uint64_t sum = (uint64_t)((int64_t)sx * sx + (int64_t)sy * sy + (int64_t)sz * sz);
+    int j = sum >> 32 != 0;
+    uint32_t xs = j ? (uint32_t)(sum >> 2) : (uint32_t)sum;
+    uint32_t r = fx_rsqrt32(xs) >> j; /* 2^46 / sqrt(sum), in (2^29, 2^31) */
+    /* component / sqrt(sum) in Q16.16 = sx 2^16 r / 2^46 = (4 sx) r / 2^32: the high word */
+    d.x = (unit)(((int64_t)(sx * 4) * (int32_t)r + ((int64_t)1 << 31)) >> 32);
+    d.y = (unit)(((int64_t)(sy * 4) * (int32_t)r + ((int64_t)1 << 31)) >> 32);
+    d.z = (unit)(((int64_t)(sz * 4) * (int32_t)r + ((int64_t)1 << 31)) >> 32);
+    if (len) {
+        /* sqrt(sum) 2^16 = sum r 2^16 / 2^46 = xs r / 2^(30 - 2j) (below 2^63 before the
+         * shift); |v| = sqrt(sum) 2^-s in units of 2^-frac: as Q16.16, xs r 2^sh */
+        int64_t l = (int64_t)((uint64_t)xs * r);
+        int sh = 2 * j - 30 - frac - s;
+        if (sh >= 32)
+            *len = fx_sat(INT64_MAX);
+        else if (sh >= 0)
+            *len = fx_sat(l << sh);
+        else if (sh > -63)
+            *len = fx_sat(fx_round_shift(l, -sh));
+        else
+            *len = 0;
+    }
+    return d;
+}
+
+static dir3 fx_norm_zero(real *len)
+{
+    dir3 d = {0, 0, 0};
+    FX_EVENT(FX_EV_DOMAIN);
+    if (len)
+        *len = 0;
+    return d;
+}
+
+/* Unit in Q16.16, any 64-bit vector: the largest component is brought into [2^15, 2^16]
+ * (rounded) and fx_norm_scaled does the rest. */
+dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
+{
+    uint64_t m = fx_abs64(x);
+    uint64_t t = fx_abs64(y);
+    if (t > m)
+        m = t;
+    t = fx_abs64(z);
+    if (t > m)
+        m = t;
+    if (m == 0)
+        return fx_norm_zero(len);
+    int s = __builtin_clzll(m) - 48; /* m 2^s in [2^15, 2^16) */
+    if (s >= 0)
+        return fx_norm_scaled((int32_t)(x * ((int64_t)1 << s)), (int32_t)(y * ((int64_t)1 << s)),
+                              (int32_t)(z * ((int64_t)1 << s)), s, frac, len);
+    return fx_norm_scaled((int32_t)fx_round_shift(x, -s), (int32_t)fx_round_shift(y, -s),
+                          (int32_t)fx_round_shift(z, -s), s, frac, len);
+}
+
+/* Round v 2^-k to nearest (half up) for k >= 1, in 32 bits without overflow: with
+ * q = floor(v 2^(1-k)), floor((q + 1) / 2) is floor(v 2^-k + 1/2). */
+static inline int32_t fx_round_shift32(int32_t v, int k)
+{
+    return ((v >> (k - 1)) + 1) >> 1;
+}
+
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+{
+    uint32_t m = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
+    uint32_t t = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
+    if (t > m)
+        m = t;
+    t = z < 0 ? 0u - (uint32_t)z : (uint32_t)z;
+    if (t > m)
+        m = t;
+    if (m == 0)
+        return fx_norm_zero(len);
+    int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */
+    if (s >= 0)
+        return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
+    return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s), s,
+                          16, len);
+}
+#endif
 
 #endif

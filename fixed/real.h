@@ -4,11 +4,14 @@
  *   0  float: real, unit and wide are all `float` (real_float.h);
  *   1  fixed: real is libfixmath's Q16.16 fix16_t, unit is Q2.30 (unit-vector components and
  *      cosines, with 64-bit products), wide is Q32.32 in 64 bits (squared lengths)
- *      (real_fixed.h).
+ *      (real_fixed.h). FX_UNIT_FRAC (fixed only) sets unit's fraction bits: 30 (the default,
+ *      Q2.30) or 16 (plain Q16.16: the cheaper, less precise variant rt-fixed16, see
+ *      docs/numerics.md).
  *
  * Types:
  *   real   positions, distances, colours, coefficients        (Q16.16 | float)
- *   unit   components of unit vectors, cosines, in [-2, 2)      (Q2.30  | float)
+ *   unit   components of unit vectors, cosines, in [-2, 2)      (Q2.30 or Q16.16 | float)
+ *   ustep  the camera's image-plane step per half pixel        (Q2.30 in both fixed | float)
  *   wide   squares of reals: squared lengths, discriminants    (Q32.32 | float)
  *   vec3   three reals; dir3: three units (a direction, |d| = 1)
  * Literals: R(1.5) for real, U(0.5) for unit: constant expressions, folded by the compiler.
@@ -35,6 +38,23 @@
 #if REAL_FIXED != 0 && REAL_FIXED != 1
 #error "REAL_FIXED must be 0 (float) or 1 (fixed point)"
 #endif
+#ifndef FX_UNIT_FRAC
+#define FX_UNIT_FRAC 30
+#endif
+#if FX_UNIT_FRAC != 30 && FX_UNIT_FRAC != 16
+#error "FX_UNIT_FRAC must be 30 (unit in Q2.30) or 16 (unit in Q16.16)"
+#endif
+#if FX_UNIT_FRAC != 30 && !REAL_FIXED
+#error "FX_UNIT_FRAC applies to the fixed-point build only"
+#endif
+/* The number system's name, as the programs print it (real=...). */
+#if !REAL_FIXED
+#define REAL_NAME "float"
+#elif FX_UNIT_FRAC == 30
+#define REAL_NAME "fixed"
+#else
+#define REAL_NAME "fixed16"
+#endif
 
 /* Kinds of numeric events (only counted when FX_COUNT_EVENTS=1): saturation, domain errors,
  * and in the float build any operation that produced a NaN or an infinity. */
@@ -52,8 +72,9 @@ void fx_events_reset(void);
 #if REAL_FIXED
 #include <fix16.h>
 typedef fix16_t real; /* Q16.16 */
-typedef int32_t unit; /* Q2.30 */
-typedef int64_t wide; /* Q32.32 */
+typedef int32_t unit;  /* Q2.30 (FX_UNIT_FRAC 30) or Q16.16 (16) */
+typedef int32_t ustep; /* Q2.30 */
+typedef int64_t wide;  /* Q32.32 */
 typedef struct rinv { /* 1/r prepared for d3_norm_near: 2^s / r, and 2 r */
     uint64_t m;
     int s;
@@ -62,6 +83,7 @@ typedef struct rinv { /* 1/r prepared for d3_norm_near: 2^s / r, and 2 r */
 #else
 typedef float real;
 typedef float unit;
+typedef float ustep;
 typedef float wide;
 typedef float rinv;
 #endif
@@ -96,6 +118,20 @@ static inline vec3 v3(real x, real y, real z)
 #define R_EPS_OFFSET R(0.001953125)
 /* A ray whose cosine with a plane is below this is treated as parallel to it. */
 #define U_EPS_PARALLEL U(0.0001)
+/* The camera's up vector counts as parallel to the view when the squared cosine of their angle
+ * exceeds this: a sine below 2^-10 (with unit in Q16.16, whose step is 2^-16, below 2^-8). */
+#if FX_UNIT_FRAC == 16
+#define U_COS2_PARALLEL (U_ONE - U_LSB)
+#else
+#define U_COS2_PARALLEL U(1.0 - 1.0 / 1048576)
+#endif
+/* A unit vector's length is 1 to within 2^-U_LEN_ERR_SHIFT / 4 (fixed Q2.30: 2^-28, float:
+ * 2^-21 is well inside; unit in Q16.16: 1.3 * 2^-16): margins that scale with it use this. */
+#if FX_UNIT_FRAC == 16
+#define U_LEN_ERR_SHIFT 14
+#else
+#define U_LEN_ERR_SHIFT 18
+#endif
 
 static inline vec3 v3_add(vec3 a, vec3 b)
 {

@@ -3,6 +3,9 @@
  * Scalars are libfixmath's Q16.16; multiply, divide, square root and sine go through
  * libfixmath. Unit vectors are Q2.30 and every product involving them is formed in 64 bits
  * and rounded once, so a hit point o + d*t is as exact as its Q16.16 coordinates allow.
+ * FX_UNIT_FRAC = 16 (rt-fixed16) makes unit plain Q16.16: the same code with every shift by
+ * FX_UF = FX_UNIT_FRAC bits and products of two units in Q.FX_UF2 (Q.60, or Q.32), except
+ * where the variant has a cheaper path of its own (32-bit normalisation, no second-order terms).
  * Nothing here wraps: out-of-range results saturate to +-R_MAX and count FX_EV_OVERFLOW.
  * Right shifts of negative values are arithmetic (GCC and Clang define it so).
  */
@@ -12,10 +15,14 @@
 #include <fix16.h>
 #include <stdint.h>
 
+/* Fraction bits of unit, and of a product of two units. */
+#define FX_UF FX_UNIT_FRAC
+#define FX_UF2 (2 * FX_UNIT_FRAC)
+
 #define R(x) ((real)F16(x))
-#define U(x) ((unit)((x) >= 0 ? (x) * 1073741824.0 + 0.5 : (x) * 1073741824.0 - 0.5))
+#define U(x) ((unit)((x) >= 0 ? (x) * (double)(1LL << FX_UF) + 0.5 : (x) * (double)(1LL << FX_UF) - 0.5))
 #define R_ONE ((real)0x00010000)
-#define U_ONE ((unit)0x40000000)
+#define U_ONE ((unit)1 << FX_UF)
 /* Largest magnitude; -R_MAX is the most negative value produced (never INT32_MIN, which
  * libfixmath uses as its overflow marker). */
 #define R_MAX ((real)INT32_MAX)
@@ -44,6 +51,13 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
+#if FX_UF == 16
+/* fx_norm64 for a vector of reals (Q16.16, frac = 16), in 32-bit arithmetic: unit in Q16.16 only. */
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
+#define FX_NORM_REALS(x, y, z, len) fx_norm32(x, y, z, len)
+#else
+#define FX_NORM_REALS(x, y, z, len) fx_norm64(x, y, z, 16, len)
+#endif
 
 /* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
  * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
@@ -230,7 +244,7 @@ static inline real r_mod_pow2_twice(real x, real m)
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u)
 {
-    return fx_sat(fx_round_shift((int64_t)a * u, 30));
+    return fx_sat(fx_round_shift((int64_t)a * u, FX_UF));
 }
 
 /* real / unit -> real, rounded to nearest. */
@@ -241,7 +255,7 @@ static inline real r_div_u(real a, unit b)
         return a == 0 ? 0 : (a < 0 ? -R_MAX : R_MAX);
     }
     int neg = (a < 0) != (b < 0);
-    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30; /* below 2^61 */
+    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << FX_UF; /* below 2^(31 + FX_UF) */
     uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
 #if FX_SOFT_DIVIDE /* the plane test's t = num / den: quotients below 2^30 */
     int64_t q = (int64_t)fx_udiv64(n + m / 2, (uint32_t)m);
@@ -251,7 +265,7 @@ static inline real r_div_u(real a, unit b)
     return fx_sat(neg ? -q : q);
 }
 
-/* ---- unit: Q2.30 ------------------------------------------------------------------------- */
+/* ---- unit: Q2.30 (or Q16.16) ------------------------------------------------------------- */
 
 static inline unit u_sat(int64_t v)
 {
@@ -264,7 +278,7 @@ static inline unit u_sat(int64_t v)
 
 static inline unit u_mul(unit a, unit b)
 {
-    return u_sat(fx_round_shift((int64_t)a * b, 30));
+    return u_sat(fx_round_shift((int64_t)a * b, FX_UF));
 }
 
 static inline unit u_neg(unit a)
@@ -285,12 +299,16 @@ static inline unit u_muli(unit a, int32_t i)
 
 static inline unit u_from_real(real a)
 {
-    return u_sat((int64_t)a * 16384);
+    return u_sat((int64_t)a * (1 << (FX_UF - 16)));
 }
 
 static inline real u_to_real(unit a)
 {
-    return (real)fx_round_shift(a, 14);
+#if FX_UF > 16
+    return (real)fx_round_shift(a, FX_UF - 16);
+#else
+    return a;
+#endif
 }
 
 /* unit / positive integer, rounded. */
@@ -306,10 +324,28 @@ static inline unit u_div(unit a, unit b)
         FX_EVENT(FX_EV_DOMAIN);
         return a == 0 ? 0 : (a < 0 ? -INT32_MAX : INT32_MAX);
     }
-    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << 30;
+    uint64_t n = (uint64_t)(a < 0 ? -(int64_t)a : a) << FX_UF;
     uint64_t m = (uint64_t)(b < 0 ? -(int64_t)b : b);
     int64_t q = (int64_t)((n + m / 2) / m);
     return u_sat((a < 0) != (b < 0) ? -q : q);
+}
+
+/* The camera's step per half pixel, tan / height with tan = s / c (c >= 1/2, so tan < 2), as a
+ * Q2.30 ustep whatever unit's format (Q16.16 would round it by up to 0.5% on a 480-line frame,
+ * shifting the picture's edges by pixels). */
+static inline ustep u_tan_step(unit s, unit c, int32_t height)
+{
+#if FX_UF == 30
+    return u_divi(u_div(s, c), height);
+#else
+    if (c <= 0) {
+        FX_EVENT(FX_EV_DOMAIN);
+        return 0;
+    }
+    int64_t n = (int64_t)s * ((int64_t)1 << 30);
+    int64_t t = n >= 0 ? (n + c / 2) / c : -((-n + c / 2) / c); /* Q2.30: |s / c| < 2 */
+    return (ustep)(t >= 0 ? (t + height / 2) / height : -((-t + height / 2) / height));
+#endif
 }
 
 /* A colour channel as a byte: clamped to [0, 1], scaled to 0..255 and rounded. */
@@ -375,7 +411,7 @@ static inline real r_hypot(real a, real b)
 static inline real v3_dot_d(vec3 v, dir3 d)
 {
     int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
-    return fx_sat(fx_round_shift(s, 30));
+    return fx_sat(fx_round_shift(s, FX_UF));
 }
 
 /* Is v . d > 0, exactly (no rounding of the sum)? */
@@ -387,7 +423,7 @@ static inline int v3_faces(vec3 v, dir3 d)
 static inline unit d3_dot(dir3 a, dir3 b)
 {
     int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
-    return u_sat(fx_round_shift(s, 30));
+    return u_sat(fx_round_shift(s, FX_UF));
 }
 
 /* d * s as a vector of reals. */
@@ -399,16 +435,18 @@ static inline vec3 d3_scale(dir3 d, real s)
 /* The unit vector along v; its length goes to *len when len is not NULL. */
 static inline dir3 d3_norm(vec3 v, real *len)
 {
-    return fx_norm64(v.x, v.y, v.z, 16, len);
+    return FX_NORM_REALS(v.x, v.y, v.z, len);
 }
 
 /* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
  * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 when
  * step*|ia| and step*|ib| are below 8 (any field of view on frames up to 4:1); a wider image
  * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
- * so that every term stays below 2^61 and the sums below 2^63. */
-static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)
+ * so that every term stays below 2^61 and the sums below 2^63. With unit in Q16.16 the offsets
+ * are rounded to Q.16 (below 2^29 on any frame) and the sums are Q.32 (below 2^47). */
+static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_t ib)
 {
+#if FX_UF == 30
     int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
     uint64_t big = (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
     int sh = 2;
@@ -420,6 +458,14 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t
     int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + r.y * a + u.y * b;
     int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + r.z * a + u.z * b;
     return fx_norm64(x, y, z, 60 - sh, 0);
+#else
+    int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
+    int32_t b = (int32_t)fx_round_shift((int64_t)step * ib, 14);
+    int64_t x = (int64_t)f.x * 65536 + (int64_t)r.x * a + (int64_t)u.x * b;
+    int64_t y = (int64_t)f.y * 65536 + (int64_t)r.y * a + (int64_t)u.y * b;
+    int64_t z = (int64_t)f.z * 65536 + (int64_t)r.z * a + (int64_t)u.z * b;
+    return fx_norm64(x, y, z, 32, 0);
+#endif
 }
 
 /* Unit vector along a x b; *len (may be NULL) gets |a x b| = sin of the angle. */
@@ -428,14 +474,15 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
     int64_t x = (int64_t)a.y * b.z - (int64_t)a.z * b.y;
     int64_t y = (int64_t)a.z * b.x - (int64_t)a.x * b.z;
     int64_t z = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
-    return fx_norm64(x, y, z, 60, len);
+    return fx_norm64(x, y, z, FX_UF2, len);
 }
 
+#if FX_UF == 30
 /* Unit vector along a Q.60 vector that is already unit to within 2^-12 (reflected and
  * refracted directions, a sphere's p - c times 1/r): rounded to Q2.30 and corrected by
  * v * (1 - e/2 + 3e^2/8), e = |v|^2 - 1, the series of 1/sqrt(1 + e) to second order (what it
  * leaves out is below 5/16 |e|^3 <= 2^-37); anything further from unit goes through fx_norm64. */
-static inline dir3 fx_renorm60(int64_t x, int64_t y, int64_t z)
+static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
 {
     const uint64_t two = (uint64_t)1 << 61; /* 2.0 in Q.60: beyond it the rounding below would not fit */
     if (__builtin_expect((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
@@ -455,6 +502,29 @@ static inline dir3 fx_renorm60(int64_t x, int64_t y, int64_t z)
               c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
     return d;
 }
+#else
+/* The same for unit in Q16.16: a Q.32 vector unit to within 2^-10, rounded to Q16.16 and
+ * corrected to first order, v * (1 - e/2): what that leaves out, 3/8 e^2, is below 2^-21, far
+ * under the format's step. 32 x 32-bit products only. */
+static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
+{
+    const uint64_t two = (uint64_t)1 << 33; /* 2.0 in Q.32 */
+    if (__builtin_expect((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
+                             (uint64_t)z + two >= 2 * two,
+                         0))
+        return fx_norm64(x, y, z, 32, 0);
+    int32_t a = (int32_t)fx_round_shift(x, 16), b = (int32_t)fx_round_shift(y, 16),
+            c = (int32_t)fx_round_shift(z, 16);
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 32);
+    if (__builtin_expect(e > ((int64_t)1 << 22) || e < -((int64_t)1 << 22), 0))
+        return fx_norm64(x, y, z, 32, 0);
+    int32_t g = (int32_t)(e >> 1); /* e/2 in Q.32, below 2^21 */
+    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 32),
+              b - (int32_t)fx_round_shift((int64_t)b * g, 32),
+              c - (int32_t)fx_round_shift((int64_t)c * g, 32)};
+    return d;
+}
+#endif
 
 /* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 31 + bits of r (so m is in
  * (2^31, 2^32]); m = 0 for r <= 0. Costs a 64-bit division: made once per object and frame. */
@@ -470,46 +540,55 @@ static inline rinv r_inv_len(real r)
 }
 
 /* Unit vector along v whose length is within about 2^-13 of the r that k was made from (a
- * point on a sphere minus its centre): v * (1/r) in Q.60, then fx_renorm60's second-order
- * correction, with no square root or division. Any other v gets d3_norm's result. */
+ * point on a sphere minus its centre): v * (1/r) in Q.60 (Q.32 with unit in Q16.16), then
+ * fx_renorm's correction, with no square root or division. Any other v gets d3_norm's result. */
 static inline dir3 d3_norm_near(vec3 v, rinv k)
 {
     if (k.m == 0 || v.x > k.lim || v.x < -k.lim || v.y > k.lim || v.y < -k.lim ||
         v.z > k.lim || v.z < -k.lim)
-        return fx_norm64(v.x, v.y, v.z, 16, 0);
+        return FX_NORM_REALS(v.x, v.y, v.z, 0);
+#if FX_UF == 30
     /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^60; times 2^(60 - s) it is v.x / r in Q.60 */
     int64_t f = (int64_t)1 << (60 - k.s);
-    return fx_renorm60(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
+    return fx_renorm(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
+#else
+    /* v.x m / 2^s is v.x / r; s >= 41 (r >= 1/128), so Q.32 is a right shift by s - 32 */
+    int sh = k.s - 32;
+    return fx_renorm(fx_round_shift(v.x * (int64_t)k.m, sh), fx_round_shift(v.y * (int64_t)k.m, sh),
+                     fx_round_shift(v.z * (int64_t)k.m, sh));
+#endif
 }
 
 /* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */
 static inline dir3 d3_reflect(dir3 d, dir3 n)
 {
-    int64_t k = fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z, 30);
+    int64_t k = fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z, FX_UF);
     int64_t x = (int64_t)d.x * U_ONE - 2 * k * n.x;
     int64_t y = (int64_t)d.y * U_ONE - 2 * k * n.y;
     int64_t z = (int64_t)d.z * U_ONE - 2 * k * n.z;
-    return fx_renorm60(x, y, z);
+    return fx_renorm(x, y, z);
 }
 
 /* Refraction of d through a surface with normal n facing the incoming ray (d.n <= 0), with
- * eta = n1 / n2 in (0, 3]. Returns 0 on total internal reflection, else 1 and *out. */
+ * eta = n1 / n2 in (0, 3]. Returns 0 on total internal reflection, else 1 and *out. Formats
+ * for unit in Q2.30 (Q.F below: Q.30; with unit in Q16.16, Q.16 and products in Q.32). */
 static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 {
     int64_t cosi = -fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z,
-                                   30); /* Q2.30 */
-    int64_t eta2 = ((int64_t)eta * eta) >> 2;             /* Q.30, at most 9 * 2^30 */
-    int64_t sin2 = U_ONE - ((cosi * cosi) >> 30);          /* Q.30 in [0, 1] */
-    int64_t k = U_ONE - ((eta2 * (sin2 >> 2)) >> 28);      /* product below 2^62 */
+                                   FX_UF); /* Q.F */
+    int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF);  /* Q.F, at most 9 * 2^F */
+    int64_t sin2 = U_ONE - ((cosi * cosi) >> FX_UF);       /* Q.F in [0, 1] */
+    const int pre = FX_UF == 30 ? 2 : 0;                   /* keeps the product below 2^62 */
+    int64_t k = U_ONE - ((eta2 * (sin2 >> pre)) >> (FX_UF - pre));
     if (k < 0)
         return 0;
-    int64_t cost = fx_isqrt64((uint64_t)k << 30);         /* Q2.30 */
-    int64_t m = (((int64_t)eta * cosi) >> 16) - cost;      /* Q.30, |m| < 2^33 */
-    int64_t e = (int64_t)eta * 16384;                      /* eta in Q.30 */
-    int64_t x = e * d.x + m * n.x; /* Q.60: below 3 * 2^60 + 4 * 2^60 for eta <= 3 */
+    int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);      /* Q.F */
+    int64_t m = (((int64_t)eta * cosi) >> 16) - cost;      /* Q.F, |m| < 2^(F + 3) */
+    int64_t e = (int64_t)eta * (1 << (FX_UF - 16));        /* eta in Q.F */
+    int64_t x = e * d.x + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
     int64_t y = e * d.y + m * n.y;
     int64_t z = e * d.z + m * n.z;
-    *out = fx_renorm60(x, y, z);
+    *out = fx_renorm(x, y, z);
     return 1;
 }
 
@@ -526,12 +605,13 @@ static inline vec3 v3_sub_in(vec3 a, vec3 b)
 static inline real v3_dot_d_in(vec3 v, dir3 d)
 {
     int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
-    return (real)fx_round_shift(s, 30);
+    return (real)fx_round_shift(s, FX_UF);
 }
 static inline vec3 d3_scale_in(dir3 d, real s)
 {
-    return v3((real)fx_round_shift((int64_t)s * d.x, 30), (real)fx_round_shift((int64_t)s * d.y, 30),
-              (real)fx_round_shift((int64_t)s * d.z, 30));
+    return v3((real)fx_round_shift((int64_t)s * d.x, FX_UF),
+              (real)fx_round_shift((int64_t)s * d.y, FX_UF),
+              (real)fx_round_shift((int64_t)s * d.z, FX_UF));
 }
 #endif
 

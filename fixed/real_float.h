@@ -217,6 +217,12 @@ static inline unit u_div(unit a, unit b)
     return r_div(a, b);
 }
 
+/* The camera's step per half pixel: tan / height with tan = s / c. */
+static inline ustep u_tan_step(unit s, unit c, int32_t height)
+{
+    return u_divi(u_div(s, c), height);
+}
+
 static inline void u_sincos_deg(real deg, unit *s, unit *c)
 {
     float rad = fmodf(deg, 360.0f) * (R_PI / 180.0f);
@@ -329,7 +335,7 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
     return fl_norm(v.x, v.y, v.z, 0);
 }
 
-static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, unit step, int32_t ia, int32_t ib)
+static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_t ib)
 {
     float a = step * (float)ia, b = step * (float)ib;
     return fl_norm(f.x + r.x * a + u.x * b, f.y + r.y * a + u.y * b, f.z + r.z * a + u.z * b, 0);

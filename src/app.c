@@ -17,11 +17,7 @@
 /* The intro, scenes/intro.scene compiled into the program at build time (rt-scenec). */
 extern const scn_desc scn_intro;
 
-#if REAL_FIXED
-#define APP_REAL "fixed"
-#else
-#define APP_REAL "float"
-#endif
+#define APP_REAL REAL_NAME
 
 #define APP_MAX_SIDE 4096
 #define APP_MAX_TIME_MS SCN_MAX_DURATION_MS

@@ -6,11 +6,7 @@
 #include "platform.h"
 #include "play.h"
 
-#if REAL_FIXED
-#define PLAY_REAL "fixed"
-#else
-#define PLAY_REAL "float"
-#endif
+#define PLAY_REAL REAL_NAME
 
 #define PLAY_SEEK_MS 5000
 #define PLAY_STATUS_NS 500000000u /* the title is updated twice a second */

@@ -52,7 +52,7 @@ int app_main(int argc, char **argv)
             printf("usage: %s [--size WxH] [--threads N] [--frames N] [--screenshot FILE]\n"
                    "plays the fixray intro in a window: Esc/Q quit, Space pause, F full screen,\n"
                    "S traced points, Left/Right seek 5 s, G grid size (build/rt-%s play has every option)\n",
-                   player_name, REAL_FIXED ? "fixed" : "float");
+                   player_name, REAL_NAME);
             return 0;
         }
         int known = strcmp(a, "--size") == 0 || strcmp(a, "--threads") == 0 ||

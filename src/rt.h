@@ -135,7 +135,7 @@ typedef struct rt_scene {
 typedef struct rt_view {
     vec3 eye;
     dir3 fwd, right, up;
-    unit step; /* tan(fov/2) / height */
+    ustep step; /* tan(fov/2) / height */
     int width, height;
 } rt_view;
 

@@ -139,7 +139,8 @@ static int scene_light_near(const rt_object *o, vec3 q)
  * The margins are generous for both builds: 2^-10 + (D + r) 2^-14 on the radius covers the
  * sphere test's rounding in either (a few Q16.16 steps, or float's relative 2^-24 of the
  * coordinates) and the rounding of K itself; E = D 2^-18 + 2 LSB bounds the dot product's
- * error (the unit vector's length is exact to 2^-28 fixed, 2^-21 float). */
+ * error (the unit vector's length is exact to 2^-28 fixed, 2^-21 float; with unit in Q16.16,
+ * 1.3 * 2^-16, E = D 2^-14 + 2 LSB: U_LEN_ERR_SHIFT). */
 static wide scene_cull(const rt_object *o, vec3 lp, real reach)
 {
     vec3 c = v3_sub(o->center, lp);
@@ -147,7 +148,7 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach)
     real d = r_sqrt_w(d2);
     real margin = r_add(R(0.0009765625), r_shr(r_add(d, o->radius), 14));
     real big_r = r_add(r_add(o->radius, reach), margin);
-    real e = r_add(r_shr(d, 18), r_muli(R_LSB, 2));
+    real e = r_add(r_shr(d, U_LEN_ERR_SHIFT), r_muli(R_LSB, 2));
     /* D < 14190 and R, E small against it inside the scene cube: no term saturates */
     wide k = w_sub(w_sub(d2, w_sq(big_r)), w_add(w_mul(r_muli(d, 2), e), w_sq(e)));
     return k > 0 ? k : 0;
@@ -210,11 +211,12 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     /* An up vector that is zero, or (nearly) parallel to the view, is replaced by another axis.
      * Tested on the cosine before crossing, so that no zero cross product is normalised: the
      * sine is below 2^-10 exactly when the squared cosine is above 1 - 2^-20 (exact in both
-     * builds, so that both take the same branch). */
+     * builds, so that both take the same branch; rt-fixed16, whose unit steps are 2^-16, uses
+     * 1 - 2^-16, a sine below 2^-8: U_COS2_PARALLEL). */
     int up_zero = v3_is_zero(cam->up);
     dir3 up = up_zero ? v->fwd : d3_norm(cam->up, 0);
     unit c = d3_dot(v->fwd, up);
-    if (up_zero || u_mul(c, c) > U(1.0 - 1.0 / 1048576)) {
+    if (up_zero || u_mul(c, c) > U_COS2_PARALLEL) {
         dir3 alt = {0, 0, U_ONE};
         if (v->fwd.z > U(0.5) || v->fwd.z < U(-0.5))
             alt = (dir3){U_ONE, 0, 0};
@@ -225,7 +227,7 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->up = d3_cross(v->right, v->fwd, 0);
     unit sn, cs;
     u_sincos_deg(r_shr(cam->fov, 1), &sn, &cs);
-    v->step = u_divi(u_div(sn, cs), height); /* tan(fov / 2) / height */
+    v->step = u_tan_step(sn, cs, height); /* tan(fov / 2) / height */
 }
 
 dir3 rt_view_ray(const rt_view *v, int x, int y)

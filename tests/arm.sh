@@ -51,6 +51,23 @@ else
   fail "arm: instruction counts differ between two runs"
 fi
 
+# The cheaper fixed-point variant (unit in Q16.16, build/arm/intro-fixed16.elf): its frames
+# equal the host's rt-fixed16 byte for byte too.
+if platform/arm/qemu.sh frames fixed16 "${FRAMES[@]}" >"$T/fixed16.log" 2>&1; then
+  same=0
+  for n in "${FRAMES[@]}"; do
+    "$B/rt-fixed16" render --size 320x240 --frame "$n" -o "$T/host-fixed16-$n.ppm" 2>/dev/null &&
+      cmp -s "$(ppm fixed16 "$n")" "$T/host-fixed16-$n.ppm" && same=$((same + 1))
+  done
+  if [ "$same" -eq ${#FRAMES[@]} ]; then
+    pass "arm: fixed16 frames ${FRAMES[*]} bit-identical to the host's rt-fixed16 (mean $(sed -n 's/.* mean=//p' "$T/fixed16.log") instructions; fixed: $(sed -n 's/.* mean=//p' "$T/fixed-1.log"))"
+  else
+    fail "arm: $((${#FRAMES[@]} - same)) of the fixed16 frames ${FRAMES[*]} differ from build/rt-fixed16 render --size 320x240"
+  fi
+else
+  fail "arm: qemu-frames fixed16: $(tail -2 "$T/fixed16.log" | tr '\n' ' ')"
+fi
+
 # Soft-float: the same sources in float, against the host's float build.
 if platform/arm/qemu.sh frames float "${FRAMES[@]}" >"$T/float.log" 2>&1; then
   pass "arm: qemu-frames float ($(grep -c '^frame=' "$T/float.log") frames, mean $(sed -n 's/.* mean=//p' "$T/float.log") instructions)"

@@ -7,7 +7,8 @@
 # Checks:
 #   - build/arm/intro-fixed.elf has no VFP/coprocessor instruction (objdump) and no soft-float
 #     helper or libm function (its symbol table); the same scans do find soft-float helpers in
-#     intro-float.elf, and VFP instructions in a small object assembled here;
+#     intro-float.elf, and VFP instructions in a small object assembled here; intro-fixed16.elf
+#     (unit in Q16.16) passes the same scans;
 #   - code + read-only data + initialised data of the fixed image <= 64 KiB (the original's limit);
 #   - .data + .bss + the reserved stack of the fixed image <= 32 KiB (the measured stack peak is
 #     checked by tests/arm.sh from a run).
@@ -17,6 +18,7 @@ cd "$(dirname "$0")/.."
 B=build
 FIXED=$B/arm/intro-fixed.elf
 FLOAT=$B/arm/intro-float.elf
+FIXED16=$B/arm/intro-fixed16.elf
 CODE_LIMIT=65536
 RAM_LIMIT=32768
 status=0
@@ -37,7 +39,8 @@ ram_bytes() { echo $(($(section "$1" .data) + $(section "$1" .bss) + $(section "
 
 print_sizes() {
   local f
-  for f in "$FIXED" "$FLOAT"; do
+  for f in "$FIXED" "$FIXED16" "$FLOAT"; do
+    [ -f "$f" ] || continue
     printf '%s: code+rodata+data %d B (limit %d), data %d + bss %d + stack reserve %d = %d B RAM (limit %d), framebuffers %d B\n' \
       "$f" "$(code_bytes "$f")" "$CODE_LIMIT" "$(section "$f" .data)" "$(section "$f" .bss)" \
       "$(section "$f" .stack)" "$(ram_bytes "$f")" "$RAM_LIMIT" "$(section "$f" .fb)"
@@ -88,6 +91,18 @@ n=$(fp_instructions "$FIXED")
 syms=$(fp_symbols "$FIXED")
 [ -z "$syms" ] && pass "arm: fixed image calls no soft-float helper or libm function" ||
   fail "arm: fixed image contains floating-point functions: $(echo $syms)"
+
+if [ -f "$FIXED16" ]; then
+  n=$(fp_instructions "$FIXED16")
+  syms=$(fp_symbols "$FIXED16")
+  if [ "$n" -eq 0 ] && [ -z "$syms" ]; then
+    pass "arm: fixed16 image has no floating-point instruction, soft-float helper or libm function (code+rodata+data $(code_bytes "$FIXED16") B)"
+  else
+    fail "arm: fixed16 image: $n floating-point/coprocessor instructions, functions: $(echo "$syms" | tr '\n' ' ')"
+  fi
+else
+  fail "arm: $FIXED16 is missing (make arm)"
+fi
 
 others=$(members "$FIXED" | grep -Ev "$ALLOWED" || true)
 nm_=$(members "$FIXED" | wc -l)

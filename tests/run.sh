@@ -30,6 +30,19 @@ for v in san-fixed san-float; do
   done
 done
 
+# The fixed-point format itself: U_ONE and friends follow FX_UNIT_FRAC (30 in rt-fixed, 16 in
+# rt-fixed16), and each format's unit-vector operations stay within a few of its own steps.
+for vf in san-fixed:30 san-fixed16:16; do
+  v=${vf%:*} frac=${vf#*:}
+  if "$B/$v/test_format" >"$T/$v-test_format.log" 2>&1 && grep -q "^  unit_frac=$frac U_ONE=$((1 << frac))\$" "$T/$v-test_format.log"; then
+    pass "$v/test_format: unit has $frac fraction bits ($(grep -c '^\[       OK \]' "$T/$v-test_format.log") cases)"
+    grep '^  ' "$T/$v-test_format.log" | sed 's/^/     /'
+  else
+    fail "$v/test_format (want unit_frac=$frac)"
+    sed 's/^/       /' "$T/$v-test_format.log" | tail -30
+  fi
+done
+
 # ---- frames: fixed vs float on the demo scene (scenes/demo.scene) --------------------------------------------------
 # Full mode (every pixel traced, every ray cast): PSNR >= 40 dB and at most 0.5% of pixels with a
 # channel off by more than 8. Adaptive mode (the default): PSNR >= 38 dB.
@@ -454,6 +467,42 @@ while IFS= read -r line; do
     *) fail "$line" ;;
   esac
 done < <(tests/soak.sh "${SOAK_STEP:-1}" 320x240 2>&1)
+
+# ---- rt-fixed16: the cheaper fixed-point variant (unit vectors in Q16.16) ---------------------
+# Intro frames at t = 4, 14, 24, 34, 44 s (320x240, default settings): the same bytes twice, the
+# same bytes from the sanitized build with no numeric event, and each within 40 dB PSNR and 3 per
+# mille of pixels off by more than 8 of rt-float's (measured over every 25th frame of the intro:
+# worst 42.7 dB and 1.7 per mille, at 24 s; rt-fixed's worst is 52.6 dB).
+F16="--frames 100-1100 --step 250"
+bad=""
+# shellcheck disable=SC2086  # options are words on purpose
+for run in 1 2; do
+  mkdir -p "$T/f16-$run"
+  $B/rt-fixed16 render $F16 -o "$T/f16-$run/%04d.ppm" 2>/dev/null || bad="$bad rt-fixed16 render failed (run $run);"
+done
+# shellcheck disable=SC2086
+$B/rt-float render $F16 -o "$T/f16-float-%04d.ppm" 2>/dev/null || bad="$bad rt-float render failed;"
+mkdir -p "$T/f16-san"
+# shellcheck disable=SC2086
+san=$($B/san-fixed16/rt render $F16 -o "$T/f16-san/%04d.ppm" --stats 2>&1) || bad="$bad san-fixed16 render failed: $(tail -3 <<<"$san");"
+grep -q '^real=fixed16$' <<<"$san" || bad="$bad --stats does not say real=fixed16;"
+grep -q '^fx_overflow=0$' <<<"$san" && grep -q '^fx_domain=0$' <<<"$san" || bad="$bad numeric events: $(grep '^fx_' <<<"$san" | tr '\n' ' ');"
+psnrs=""
+for n in 0100 0350 0600 0850 1100; do
+  cmp -s "$T/f16-1/$n.ppm" "$T/f16-2/$n.ppm" || bad="$bad frame $n differs between two runs;"
+  cmp -s "$T/f16-1/$n.ppm" "$T/f16-san/$n.ppm" || bad="$bad frame $n differs from the sanitized build's;"
+  line=$($B/rt-cmp "$T/f16-1/$n.ppm" "$T/f16-float-$n.ppm" 2>&1)
+  psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
+  over8=$(sed -n 's/.*over8=\([0-9]*\).*/\1/p' <<<"$line")
+  psnrs="$psnrs $((10#$n)):${psnr}dB/${over8}"
+  awk -v p="$psnr" -v o="$over8" 'BEGIN { exit !((p == "inf" || p >= 40) && o * 1000 <= 76800 * 3) }' ||
+    bad="$bad frame $n vs float: $line (want >= 40 dB, over8 <= 3 per mille);"
+done
+if [ -z "$bad" ]; then
+  pass "rt-fixed16: intro frames 100-1100 step 250 the same bytes twice and in the sanitized build (no numeric event); vs rt-float (frame:PSNR/over8 of 76800):$psnrs"
+else
+  fail "rt-fixed16:$bad"
+fi
 
 # ---- valgrind memcheck: intro frames rendered and written by both -O2 builds -------------------
 # the float build reads the intro from its scene file, the fixed one uses the compiled-in copy

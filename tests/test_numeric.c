@@ -82,7 +82,7 @@ static const struct tol TOL_SINCOS_DEG = {1e-8, 0.0};
 static const double TOL_SINCOS_AXIS = 0.0;
 /* u_pow(b, n): at most one Q2.30 rounding per multiplication, none amplified: n LSB. */
 static const struct tol TOL_POW_PER_STEP = {LSB_U, 0.0};
-/* Unit vectors from normalisation (d3_norm, fx_norm64, fx_renorm60, d3_reflect). */
+/* Unit vectors from normalisation (d3_norm, fx_norm64, fx_renorm, d3_reflect). */
 static const struct tol TOL_NORM = {0x1p-28, 0.0};
 /* d3_cross: the products are exact, so only the normalisation rounds (scale: 1 / |a x b|). */
 static const struct tol TOL_CROSS = {0x1p-28, 0.0};
@@ -992,8 +992,8 @@ static uint64_t ref_isqrt(uint64_t n)
 }
 #endif
 
-#if REAL_FIXED /* fx_isqrt64, fx_norm64 and fx_renorm60 exist in the fixed build only */
-/* The fixed build's own parts: fx_isqrt64, fx_norm64, fx_renorm60, and r_mul against
+#if REAL_FIXED /* fx_isqrt64, fx_norm64 and fx_renorm exist in the fixed build only */
+/* The fixed build's own parts: fx_isqrt64, fx_norm64, fx_renorm, and r_mul against
  * libfixmath's fix16_mul bit for bit. */
 static void test_fixed_internals(void **state)
 {
@@ -1194,7 +1194,7 @@ static void test_fixed_internals(void **state)
         check_r("fx_norm64:len", el, len, tol_at(TOL_NORM_LEN, el), "%s", what);
     }
 
-    /* fx_renorm60: Q.60 vectors near unit length (first-order correction), and those too far
+    /* fx_renorm: Q.60 vectors near unit length (first-order correction), and those too far
      * from it or beyond 2.0 (fallback to fx_norm64) */
     static const double scales[] = {1.0,         1 + 0x1p-22, 1 - 0x1p-22, 1 + 0x1p-21, 1 - 0x1p-21,
                                     1 + 0x1p-20, 1 + 0x1p-19, 1 - 0x1p-19, 0.5,         1.5,
@@ -1220,7 +1220,7 @@ static void test_fixed_internals(void **state)
         double e[3] = {(double)q[0], (double)q[1], (double)q[2]};
         char what[128];
         snprintf(what, sizeof what, "(%.12g, %.12g, %.12g) * 2^60", v[0], v[1], v[2]);
-        check_dir("fx_renorm60", e, fx_renorm60(q[0], q[1], q[2]), TOL_NORM.abs, what);
+        check_dir("fx_renorm", e, fx_renorm(q[0], q[1], q[2]), TOL_NORM.abs, what);
     }
     checks_done();
 }

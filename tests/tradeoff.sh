@@ -30,7 +30,7 @@ CONFIGS=(
   "depth 3|--depth 3"
   "depth 4|--depth 4"
 )
-REALS=(float fixed)
+REALS=(float fixed fixed16)   # fixed16: rt-fixed16, unit vectors in Q16.16 (docs/numerics.md)
 if [ "${QUICK:-0}" = 1 ]; then
   out=build/tradeoff/tradeoff-quick.md
   times=${TIMES:-14} rounds=${ROUNDS:-1}
@@ -59,7 +59,7 @@ for t in $times; do
   [[ "$t" =~ ^[0-9]+(\.[0-9]+)?$ ]] || die "TIMES must be seconds of the intro, e.g. '4 14 25', not '$times'"
 done
 [ -n "${times// /}" ] || die "TIMES is empty"
-for f in build/rt-float build/rt-fixed build/rt-cmp; do
+for f in build/rt-float build/rt-fixed build/rt-fixed16 build/rt-cmp; do
   [ -x "$f" ] || die "$f is missing: run make all first"
 done
 command -v gnuplot >/dev/null || die "gnuplot is missing: run ./setup.sh --test (package gnuplot-nox)"
@@ -142,11 +142,11 @@ awk -F'\t' -v OFS='\t' '
       ps[k] = (mse == 0) ? 1e9 : 10 * log(65025 / mse) / log(10)
     }
     for (k = 0; k < n; k++) {
-      all = 1; fx = (real[k] == "fixed")
+      all = 1; fx = (real[k] ~ /^fixed/)
       for (j = 0; j < n; j++) {
         if (j == k || !(ms[j] <= ms[k] && ps[j] >= ps[k] && (ms[j] < ms[k] || ps[j] > ps[k]))) continue
         all = 0
-        if (real[j] == "fixed") fx = 0
+        if (real[j] ~ /^fixed/) fx = 0
       }
       front = (all && fx) ? "all, fixed" : all ? "all" : fx ? "fixed" : ""
       printf "%d\t%s\t%s\t%s\t%.3f\t%.3f\t%s\t%s\t%.3f\t%.3f\t%s\n", k, real[k], name[k], opts[k], ms[k], wms[k],
@@ -181,6 +181,7 @@ set datafile separator "\t"
 set offsets graph 0.02, graph 0.12, graph 0.04, graph 0.04
 plot "< awk -F'\t' '\$3 == \"float\"' $pdat | sort -g -k1,1" using 1:2 with points pt 7 ps 1.3 lc rgb "#1f77b4" title "float", \
      "< awk -F'\t' '\$3 == \"fixed\"' $pdat | sort -g -k1,1" using 1:2 with points pt 5 ps 1.3 lc rgb "#d62728" title "fixed", \
+     "< awk -F'\t' '\$3 == \"fixed16\"' $pdat | sort -g -k1,1" using 1:2 with points pt 9 ps 1.4 lc rgb "#9467bd" title "fixed16 (unit in Q16.16)", \
      "< awk -F'\t' '\$5 == 1' $pdat | sort -g -k1,1" using 1:2 with lines lw 2 lc rgb "#2ca02c" title "Pareto front (all)", \
      "< awk -F'\t' '\$6 == 1' $pdat | sort -g -k1,1" using 1:2 with lines lw 2 dt 2 lc rgb "#ff7f0e" title "Pareto front (fixed only: an FPU-less board)", \
      "$pdat" using 1:2:4 with labels offset 0.8,0.6 left font "sans,8" notitle

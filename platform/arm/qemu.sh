@@ -5,6 +5,7 @@
 #   platform/arm/qemu.sh play   [fixed|float]                  QEMU's window, the intro looping
 #   platform/arm/qemu.sh frames [fixed|float] N...             build/qemu/<real>-NNNN.ppm
 #   platform/arm/qemu.sh bench  [fixed|float] FIRST LAST STEP  frames FIRST..LAST every STEP
+# (fixed16 in place of fixed or float: build/arm/intro-fixed16.elf, unit vectors in Q16.16)
 # frames and bench run headless under `-icount shift=0` (one guest instruction = 1 ns of virtual
 # time, so the counts are exact and repeatable) and print one `frame=N instructions=M` line per
 # frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use (`ram: ...`). The exit status
@@ -14,13 +15,13 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
-usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float] [ARGS...] (see the file's header)"
+usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float|fixed16] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
 cmd=$1
 shift
 real=fixed
-if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ]; }; then
+if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ]; }; then
   real=$1
   shift
 fi
