@@ -29,7 +29,7 @@ CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp
 CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
 [ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
 INC="-Ifixed -Isrc -isystem $B/deps/libfixmath/libfixmath"
-CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c"
+CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c src/knobs.c"
 LIB=$B/obj/fixed/libfixmath.a
 
 # Builds program $1 from generated scene source $2 and effects header $3.
