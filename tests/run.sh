@@ -153,6 +153,39 @@ else
   fail "--depth 0 still casts secondary rays"
 fi
 
+# --octaves N caps every noise texture's octaves. The textures scene has noise textures of 3 and
+# 4 octaves: --octaves 1 and 3 change the picture and sum fewer octaves (noise_octaves=, the
+# noise work done), 4 (the scene's most) and 8 change nothing, byte for byte; in both builds.
+for real in fixed float; do
+  oct() { $B/rt-$real render --scene scenes/textures.scene --time 6 --threads 1 --stats "$@" 2>/dev/null |
+          sed -n 's/^noise_octaves=//p'; }
+  n0=$(oct -o "$T/oct-$real.ppm")
+  bad=""
+  for k in 1 3 4 8; do
+    nk=$(oct --octaves $k -o "$T/oct-$real-$k.ppm")
+    if [ $k -ge 4 ]; then
+      cmp -s "$T/oct-$real.ppm" "$T/oct-$real-$k.ppm" && [ "$nk" = "$n0" ] ||
+        bad="$bad --octaves $k changed the picture or noise_octaves ($nk, not $n0);"
+    else
+      d=$($B/rt-cmp "$T/oct-$real.ppm" "$T/oct-$real-$k.ppm" | sed -n 's/.*differing=\([0-9]*\).*/\1/p')
+      [ "${d:-0}" -gt 0 ] && [ -n "$nk" ] && [ "$nk" -lt "$n0" ] ||
+        bad="$bad --octaves $k: $d pixels differ, noise_octaves=$nk (default $n0);"
+    fi
+    eval "n$k=\$nk"
+  done
+  if [ -z "$bad" ] && [ "${n0:-0}" -gt 0 ] && [ "$n1" -lt "$n3" ]; then
+    pass "--octaves ($real): noise_octaves $n0 (scene's), 3: $n3, 1: $n1, pictures changed; 4 and 8 byte-identical to the scene's"
+  else
+    fail "--octaves ($real):$bad (noise_octaves ${n0:-none} by default, 1: ${n1:-}, 3: ${n3:-})"
+  fi
+done
+stats=$($B/rt-fixed render --scene scenes/diffuse.scene --octaves 2 --stats -o "$T/oct-diffuse.png" 2>/dev/null)
+if grep -q '^noise_octaves=0$' <<<"$stats" && grep -q '^octaves=2$' <<<"$stats"; then
+  pass "--octaves on a scene without noise: octaves=2, noise_octaves=0"
+else
+  fail "--octaves on a scene without noise: $(grep octaves <<<"$stats" | tr '\n' ' ')"
+fi
+
 # ---- several frames in one process: --frames, --step, -o pattern, --checksum -----------------------
 # Each frame of a multi-frame render is byte for byte the frame a single render gives (no state
 # carries over from one frame to the next), and --checksum prints the same hash for it.
