@@ -7,8 +7,9 @@
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
 #                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
-#   make tradeoff   accuracy against time: render options one at a time, float and fixed, PSNR
-#                   against the reference and ms per frame: docs/tradeoff.md and a plot; QUICK=1: smoke
+#   make tradeoff   accuracy against cost: render options one at a time, float and fixed, PSNR
+#                   against the reference, ms per frame and ARM926 instructions per frame (QEMU):
+#                   docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
@@ -286,7 +287,7 @@ bench: setup-arm
 	@tests/bench_all.sh
 
 tradeoff: setup-test
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory all $(ARM_ELFS)
 	@tests/tradeoff.sh
 
 bench-demo: setup

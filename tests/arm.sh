@@ -70,8 +70,11 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
       { [ -n "$c" ] && [ "$c" -gt 0 ] && [ "$c" != "$c0" ]; } || bad="$bad frame $n: $c instructions (default $c0);"
       counts="${counts:-}$n: $c (default $c0) "
     done
-    [ -z "$bad" ] && pass "arm: fixed frames ${SET_FRAMES[*]} with $S bit-identical to rt-fixed render with them, not the default frames; instructions ${counts}" ||
+    if [ -z "$bad" ]; then
+      pass "arm: fixed frames ${SET_FRAMES[*]} with $S bit-identical to rt-fixed render with them, not the default frames; instructions ${counts}"
+    else
       fail "arm: settings $S:$bad"
+    fi
     counts=""
   else
     fail "arm: qemu-frames fixed $S: $(tail -2 "$T/set-$tag.log" | tr '\n' ' ')"
