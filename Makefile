@@ -16,6 +16,7 @@
 #   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
+#                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
@@ -316,6 +317,7 @@ scene-programs: setup-arm
 REAL ?= fixed
 FRAMES ?= 0 250 500
 QEMU_BENCH ?= 0 1200 24
+SETTINGS ?=
 
 arm: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
@@ -323,11 +325,11 @@ arm: setup-arm
 
 qemu: setup-gui
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
-	@platform/arm/qemu.sh play $(REAL)
+	@platform/arm/qemu.sh play $(REAL) $(SETTINGS)
 
 qemu-frames: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
-	@platform/arm/qemu.sh frames $(REAL) $(FRAMES)
+	@platform/arm/qemu.sh frames $(REAL) $(SETTINGS) $(FRAMES)
 
 qemu-bench: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)

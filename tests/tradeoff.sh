@@ -258,17 +258,20 @@ awk -F'\t' '
         (am[i] ~ /^[0-9]/ ? am[i] : "NaN")
     }
   }' "$rows" >"$pdat"
-# Each panel's points by build, its front as a line, the points labelled (sel: awk condition on
-# the build, x: the cost column).
+# Each panel: the points by build, its front as a line, the points labelled. Its data are the
+# rows sorted by the panel's cost (column $3: 1 host ms, 7 ARM926 instructions), so that the
+# front is drawn from left to right.
 panel() { # title xlabel x-column legend-float legend-fixed front-column front-title line-style
+  local data=$pdat.$3
+  sort -t "$(printf '\t')" -g -k"$3,$3" "$pdat" >"$data"
   cat <<EOF
 set title "$1"
 set xlabel "$2"
 set ylabel "PSNR against float, full, depth 8, min-contrib 0 (dB, higher is better)"
-plot "< awk -F'\\t' '\$3 == \"float\" && \$$3 != \"NaN\"' $pdat | sort -g -k$3,$3" using $3:2 with points pt 7 ps 1.3 lc rgb "#1f77b4" title "$4", \\
-     "< awk -F'\\t' '\$3 == \"fixed\" && \$$3 != \"NaN\"' $pdat | sort -g -k$3,$3" using $3:2 with points pt 5 ps 1.3 lc rgb "#d62728" title "$5", \\
-     "< awk -F'\\t' '\$$6 == 1' $pdat | sort -g -k$3,$3" using $3:2 with lines lw 2 $8 title "$7", \\
-     "< awk -F'\\t' '\$$3 != \"NaN\"' $pdat" using $3:2:4 with labels offset 0.8,0.6 left font "sans,7" notitle
+plot "< awk -F'\t' '\$3 == \"float\" && \$$3 != \"NaN\"' $data" using $3:2 with points pt 7 ps 1.3 lc rgb "#1f77b4" title "$4", \\
+     "< awk -F'\t' '\$3 == \"fixed\" && \$$3 != \"NaN\"' $data" using $3:2 with points pt 5 ps 1.3 lc rgb "#d62728" title "$5", \\
+     "< awk -F'\t' '\$$6 == 1' $data" using $3:2 with lines lw 2 $8 title "$7", \\
+     "< awk -F'\t' '\$$3 != \"NaN\"' $data" using $3:2:4 with labels offset 0.8,0.6 left font "sans,7" notitle
 EOF
 }
 {
@@ -287,6 +290,8 @@ EOF
     "Pareto front (desktop)" 'lc rgb "#2ca02c"'
   if [ "$arm" = 1 ]; then
     echo 'set logscale x'
+    echo 'set autoscale xfix'   # no widening to the next power of ten: the offsets give the room
+    echo 'set xtics (100, 150, 200, 300, 500, 700, 1000, 1500, 2000, 3000, 5000)'
     panel "FPU-less ARM926 (QEMU): instructions per frame" "ARM926 million instructions per frame (mean, log scale)" 7 \
       "soft-float image" "fixed image" 6 "Pareto front (board)" 'dt 2 lc rgb "#ff7f0e"'
     echo 'unset multiplot'
