@@ -29,7 +29,7 @@ CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp
 CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
 [ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
 INC="-Ifixed -Isrc -isystem $B/deps/libfixmath/libfixmath"
-CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c src/knobs.c"
+CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c"
 LIB=$B/obj/fixed/libfixmath.a
 
 # Builds program $1 from generated scene source $2 and effects header $3.
@@ -47,8 +47,9 @@ build() {
 }
 
 # The fixed ARM image $1 around generated scene source $2 (named scn_intro) and effects header
-# $3: the core compiled for the ARM926 with the scene's effects; intro.c, the backend and
-# libfixmath as `make arm` built them.
+# $3: the core compiled for the ARM926 with the scene's effects; intro.c and knobs.c (the
+# board's command line, which no effect changes), the backend and libfixmath as `make arm`
+# built them.
 ARM_CC=arm-none-eabi-gcc
 ARM_ARCH="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
 AO=$B/obj/arm-fixed
@@ -61,7 +62,7 @@ build_arm() {
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/platform/arm/arm.o" \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/src/knobs.o" "$AO/platform/arm/arm.o" \
     "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
 }
 arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }
