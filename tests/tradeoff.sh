@@ -12,8 +12,8 @@
 # ARM926: then every configuration renders the same frames on the emulated board
 # (platform/arm/qemu.sh bench with the same settings, one frame per run): the fixed image for
 # the fixed rows, the soft-float image for the float rows; exact instruction counts. Grids 2
-# and 16 do not fit the board's RAM (n/a). Without qemu-system-arm the ARM column is left out,
-# with a note (ARM=0 leaves it out too).
+# and 16 do not fit the board's RAM (n/a). Without qemu-system-arm the ARM columns stay empty,
+# with a note (ARM=0 does the same).
 # Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 26 configurations, about
 # 2.5 minutes on the 2-core build machine (host timing 25 s, ARM926 2 minutes, mostly the
 # soft-float image). QUICK=1: two configurations on one frame, one round, the board's fixed
@@ -80,9 +80,9 @@ mkdir -p "$(dirname "$out")" "$(dirname "$plot")"
 FPS=$(awk '$1 == "fps" { print $2 }' scenes/intro.scene)
 arm=1 arm_note=""
 if [ "${ARM:-1}" = 0 ]; then
-  arm=0 arm_note="ARM=0 was given: the ARM926 column is left out."
+  arm=0 arm_note="ARM=0 was given: the ARM926 columns are left empty."
 elif ! command -v qemu-system-arm >/dev/null; then
-  arm=0 arm_note="qemu-system-arm is not installed (./setup.sh --arm installs it): the ARM926 column is left out."
+  arm=0 arm_note="qemu-system-arm is not installed (./setup.sh --arm installs it): the ARM926 columns are left empty."
 fi
 [ -n "$arm_note" ] && echo "tradeoff: note: $arm_note" >&2
 # frame_of SECONDS: the intro's frame at that moment (the board renders whole frames)
