@@ -9,14 +9,16 @@
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
 #                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
-#   make tradeoff   accuracy against time: render options one at a time, float, fixed, fixed16, PSNR
-#                   against the reference and ms per frame: docs/tradeoff.md and a plot; QUICK=1: smoke
+#   make tradeoff   accuracy against cost: render options one at a time, float, fixed and fixed16,
+#                   PSNR against the reference, ms per frame and ARM926 instructions per frame
+#                   (QEMU): docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
 #   make scene-programs   compile each scene into its own program; code size; same frames
 #   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
+#                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
@@ -59,7 +61,7 @@ FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 
 # The tracer core: the same sources in every variant.
 CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
-             src/texture.c src/scn.c
+             src/texture.c src/scn.c src/knobs.c
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
 APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c src/outpath.c \
@@ -235,7 +237,7 @@ ARM_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/%.o,$(ARM_SRCS)) $(BUILD)
 
 $(BUILD)/obj/arm-$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+	$(ARM_CC) $(BASE_CFLAGS) $$(or $$(ARM_COLD_OPT),$(OPT)) $(ARM_CFLAGS) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 
 $(BUILD)/obj/arm-$(1)/start.o: platform/arm/start.S
 	@mkdir -p $$(@D)
@@ -257,6 +259,9 @@ endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
+# The board's command line (src/intro.c, src/knobs.c) runs once per command, outside the
+# counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
+$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/intro.o $(BUILD)/obj/arm-$(r)/src/knobs.o): ARM_COLD_OPT := -Os
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
@@ -309,7 +314,7 @@ bench: setup-arm
 	@tests/bench_all.sh
 
 tradeoff: setup-test
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory all $(ARM_ELFS)
 	@tests/tradeoff.sh
 
 bench-demo: setup
@@ -338,6 +343,7 @@ scene-programs: setup-arm
 REAL ?= fixed
 FRAMES ?= 0 250 500
 QEMU_BENCH ?= 0 1200 24
+SETTINGS ?=
 
 arm: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16)
@@ -345,11 +351,11 @@ arm: setup-arm
 
 qemu: setup-gui
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
-	@platform/arm/qemu.sh play $(REAL)
+	@platform/arm/qemu.sh play $(REAL) $(SETTINGS)
 
 qemu-frames: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
-	@platform/arm/qemu.sh frames $(REAL) $(FRAMES)
+	@platform/arm/qemu.sh frames $(REAL) $(SETTINGS) $(FRAMES)
 
 qemu-bench: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)

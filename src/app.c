@@ -7,6 +7,7 @@
 
 #include "frame.h"
 #include "image.h"
+#include "knobs.h"
 #include "outpath.h"
 #include "platform.h"
 #include "play.h"
@@ -42,19 +43,14 @@ typedef struct app_opts {
     int have_frames, have_step;
     int checksum, progress;
     int effects_all;
-    int depth; /* -1: the scene's */
+    knobs k; /* --depth, --mode, --grid, --threshold, --min-contrib, --octaves */
     int stats;
-    int mode, grid;
-    long threshold, min_contrib; /* in 1/10000 */
     int show_samples;
     int threads;            /* 1..PLAT_MAX_THREADS */
     int play;               /* the play command: --frames N counts frames */
     long play_frames;       /* play --frames N: quit after N frames (0: run until quit) */
     const char *screenshot; /* play --screenshot FILE */
 } app_opts;
-
-#define APP_DECIMALS 4
-#define APP_SCALE 10000
 
 static void app_usage(FILE *f)
 {
@@ -82,6 +78,8 @@ static void app_usage(FILE *f)
             "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
             "  --min-contrib X     skip secondary rays weighing less than X in the pixel, 0..1\n"
             "                      (default 0.01; 0 = trace every ray)\n"
+            "  --octaves N         noise textures sum at most N octaves, 1..8 (default: each\n"
+            "                      texture's own count, from the scene)\n"
             "  --effects E         auto: trace only the effects the frame needs (default);\n"
             "                      all: every effect on, for comparison\n"
             "  --show-samples      paint every traced point white\n"
@@ -90,7 +88,7 @@ static void app_usage(FILE *f)
             "  --stats             print key=value statistics on standard output (with --frames:\n"
             "                      summed over the frames)\n"
             "play: --scene, --size (default 640x480), --threads, --depth, --mode, --grid,\n"
-            "--threshold, --min-contrib and --show-samples as above, and\n"
+            "--threshold, --min-contrib, --octaves and --show-samples as above, and\n"
             "  --frames N          quit after N frames, stepping the timeline by exactly one frame\n"
             "                      period each (a scripted, reproducible run)\n"
             "  --screenshot FILE   save the last frame shown (.png or .ppm)\n"
@@ -114,66 +112,11 @@ static int app_error(const char *option, const char *what, const char *value)
     return 2;
 }
 
-/* Parses a decimal integer in [lo, hi] that fills the whole of s up to `end` (or NUL). */
-static int app_parse_int(const char *s, const char **end, long lo, long hi, long *out)
-{
-    long v = 0;
-    const char *p = s;
-    if (*p < '0' || *p > '9')
-        return -1;
-    while (*p >= '0' && *p <= '9') {
-        v = v * 10 + (*p - '0');
-        if (v > hi)
-            return -1;
-        p++;
-    }
-    if (v < lo)
-        return -1;
-    if (end)
-        *end = p;
-    else if (*p)
-        return -1;
-    *out = v;
-    return 0;
-}
-
-/* A decimal number with at most `decimals` decimals, in units of 10^-decimals, at most `max`
- * such units: no floating point involved. */
-static int app_parse_decimal(const char *s, int decimals, long max, long *out)
-{
-    const char *p;
-    long whole, frac = 0, scale = 1;
-    for (int i = 0; i < decimals; i++)
-        scale *= 10;
-    if (app_parse_int(s, &p, 0, max / scale, &whole) != 0)
-        return -1;
-    if (*p == '.') {
-        int digits = 0;
-        p++;
-        while (*p >= '0' && *p <= '9' && digits < decimals) {
-            frac = frac * 10 + (*p - '0');
-            digits++;
-            p++;
-        }
-        if (digits == 0 || *p)
-            return -1;
-        while (digits++ < decimals)
-            frac *= 10;
-    } else if (*p) {
-        return -1;
-    }
-    long total = whole * scale + frac;
-    if (total > max)
-        return -1;
-    *out = total;
-    return 0;
-}
-
 /* Seconds with at most three decimals, as milliseconds. */
 static int app_parse_time(const char *s, int32_t *ms)
 {
     long v;
-    if (app_parse_decimal(s, 3, APP_MAX_TIME_MS, &v) != 0)
+    if (knobs_decimal(s, 3, APP_MAX_TIME_MS, &v) != 0)
         return -1;
     *ms = (int32_t)v;
     return 0;
@@ -183,9 +126,9 @@ static int app_parse_size(const char *s, int *w, int *h)
 {
     const char *p;
     long a, b;
-    if (app_parse_int(s, &p, 1, APP_MAX_SIDE, &a) != 0 || (*p != 'x' && *p != 'X'))
+    if (knobs_int(s, &p, 1, APP_MAX_SIDE, &a) != 0 || (*p != 'x' && *p != 'X'))
         return -1;
-    if (app_parse_int(p + 1, NULL, 1, APP_MAX_SIDE, &b) != 0)
+    if (knobs_int(p + 1, NULL, 1, APP_MAX_SIDE, &b) != 0)
         return -1;
     *w = (int)a;
     *h = (int)b;
@@ -202,9 +145,9 @@ static int app_parse_frames(const char *s, long *first, long *last)
         *last = -1;
         return 0;
     }
-    if (app_parse_int(s, &p, 0, max, first) != 0 || *p != '-')
+    if (knobs_int(s, &p, 0, max, first) != 0 || *p != '-')
         return -1;
-    return app_parse_int(p + 1, NULL, *first, max, last);
+    return knobs_int(p + 1, NULL, *first, max, last);
 }
 
 /* The output file of frame `frame`: `pattern` with its frame-number fields ("%d", "%4d",
@@ -246,12 +189,12 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        const char *expected;
+        int kr;
         int takes_value = strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
                           strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
-                          strcmp(a, "--frame") == 0 || strcmp(a, "--depth") == 0 ||
+                          strcmp(a, "--frame") == 0 || knobs_is_option(a) ||
                           strcmp(a, "--frames") == 0 || strcmp(a, "--step") == 0 ||
-                          strcmp(a, "--mode") == 0 || strcmp(a, "--grid") == 0 ||
-                          strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0 ||
                           strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0 ||
                           strcmp(a, "--threads") == 0 || strcmp(a, "--screenshot") == 0;
         static const char *const render_only[] = {"-o", "--output", "--time", "--frame", "--step",
@@ -287,11 +230,11 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected seconds in 0..3600 with at most 3 decimals", v);
             o->have_time = 1;
         } else if (strcmp(a, "--frame") == 0) {
-            if (app_parse_int(v, NULL, 0, APP_MAX_FRAME, &o->frame) != 0)
+            if (knobs_int(v, NULL, 0, APP_MAX_FRAME, &o->frame) != 0)
                 return app_error(a, "expected a frame number (0 or more)", v);
             o->have_frame = 1;
         } else if (strcmp(a, "--frames") == 0 && o->play) {
-            if (app_parse_int(v, NULL, 1, APP_MAX_FRAME, &o->play_frames) != 0)
+            if (knobs_int(v, NULL, 1, APP_MAX_FRAME, &o->play_frames) != 0)
                 return app_error(a, "expected a number of frames, 1 or more", v);
         } else if (strcmp(a, "--screenshot") == 0) {
             if (!img_path_ok(v))
@@ -299,7 +242,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
             o->screenshot = v;
         } else if (strcmp(a, "--threads") == 0) {
             long n;
-            if (app_parse_int(v, NULL, 1, PLAT_MAX_THREADS, &n) != 0)
+            if (knobs_int(v, NULL, 1, PLAT_MAX_THREADS, &n) != 0)
                 return app_error(a, "expected a number of threads in 1..64", v);
             o->threads = (int)n;
         } else if (strcmp(a, "--frames") == 0) {
@@ -307,7 +250,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
                 return app_error(a, "expected FIRST-LAST frame numbers with FIRST <= LAST, or all", v);
             o->have_frames = 1;
         } else if (strcmp(a, "--step") == 0) {
-            if (app_parse_int(v, NULL, 1, APP_MAX_FRAME, &o->step) != 0)
+            if (knobs_int(v, NULL, 1, APP_MAX_FRAME, &o->step) != 0)
                 return app_error(a, "expected a whole number of frames, 1 or more", v);
             o->have_step = 1;
         } else if (strcmp(a, "--checksum") == 0) {
@@ -316,31 +259,9 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         } else if (strcmp(a, "--progress") == 0) {
             o->progress = 1;
             continue;
-        } else if (strcmp(a, "--depth") == 0) {
-            long n;
-            if (app_parse_int(v, NULL, 0, RT_MAX_DEPTH, &n) != 0)
-                return app_error(a, "expected a recursion limit in 0..8", v);
-            o->depth = (int)n;
-        } else if (strcmp(a, "--mode") == 0) {
-            if (strcmp(v, "full") == 0)
-                o->mode = RT_MODE_FULL;
-            else if (strcmp(v, "adaptive") == 0)
-                o->mode = RT_MODE_ADAPTIVE;
-            else
-                return app_error(a, "expected full or adaptive", v);
-        } else if (strcmp(a, "--grid") == 0) {
-            long n;
-            if (app_parse_int(v, NULL, 2, RT_GRID_MAX, &n) != 0 || (n & (n - 1)) != 0)
-                return app_error(a, "expected a square size of 2, 4, 8 or 16", v);
-            o->grid = (int)n;
-        } else if (strcmp(a, "--threshold") == 0 || strcmp(a, "--min-contrib") == 0) {
-            long n;
-            if (app_parse_decimal(v, APP_DECIMALS, APP_SCALE, &n) != 0)
-                return app_error(a, "expected a number in 0..1 with at most 4 decimals", v);
-            if (strcmp(a, "--threshold") == 0)
-                o->threshold = n;
-            else
-                o->min_contrib = n;
+        } else if ((kr = knobs_parse(&o->k, a, v, &expected)) != 0) {
+            if (kr < 0)
+                return app_error(a, expected, v);
         } else if (strcmp(a, "--stats") == 0) {
             o->stats = 1;
             continue;
@@ -389,7 +310,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
 
 /* Counters of rt_stats summed over the frames of a run (64 bits: many frames, large ones). */
 typedef struct app_sums {
-    unsigned long long rays[4], shadow_tests, squares[RT_GRID_LEVELS], split[RT_GRID_LEVELS],
+    unsigned long long rays[4], shadow_tests, noise_octaves, squares[RT_GRID_LEVELS], split[RT_GRID_LEVELS],
         split_by[5];
 } app_sums;
 
@@ -400,6 +321,7 @@ static void app_add(app_sums *t, const rt_stats *s)
     t->rays[2] += s->rays_reflect;
     t->rays[3] += s->rays_refract;
     t->shadow_tests += s->shadow_tests;
+    t->noise_octaves += s->noise_octaves;
     for (int l = 0; l < RT_GRID_LEVELS; l++) {
         t->squares[l] += s->squares[l];
         t->split[l] += s->split[l];
@@ -440,11 +362,16 @@ static void app_print_stats(const app_opts *o, const char *scene_name, const rt_
             printf("%s%s", n++ ? "," : "", fx_names[b]);
     printf("%s\n", scene->effects ? "" : "none");
     printf("reach_depth=%d\n", params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
-    printf("mode=%s\n", o->mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
-    if (o->mode == RT_MODE_ADAPTIVE)
-        printf("grid=%d\nthreshold=%ld.%04ld\n", o->grid, o->threshold / APP_SCALE,
-               o->threshold % APP_SCALE);
-    printf("min_contrib=%ld.%04ld\n", o->min_contrib / APP_SCALE, o->min_contrib % APP_SCALE);
+    printf("mode=%s\n", o->k.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
+    if (o->k.mode == RT_MODE_ADAPTIVE)
+        printf("grid=%d\nthreshold=%ld.%04ld\n", o->k.grid, (long)o->k.threshold / KNOBS_SCALE,
+               (long)o->k.threshold % KNOBS_SCALE);
+    printf("min_contrib=%ld.%04ld\n", (long)o->k.min_contrib / KNOBS_SCALE,
+           (long)o->k.min_contrib % KNOBS_SCALE);
+    if (o->k.octaves > 0)
+        printf("octaves=%d\n", o->k.octaves);
+    else
+        printf("octaves=scene\n");
     printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000), (unsigned long long)(us % 1000));
     printf("pixels=%ld\n", (long)o->width * o->height);
     printf("threads=%d\n", o->threads);
@@ -452,8 +379,9 @@ static void app_print_stats(const app_opts *o, const char *scene_name, const rt_
     printf("rays_primary=%llu\nrays_shadow=%llu\nrays_reflect=%llu\nrays_refract=%llu\n",
            t->rays[0], t->rays[1], t->rays[2], t->rays[3]);
     printf("shadow_tests=%llu\n", t->shadow_tests);
-    if (o->mode == RT_MODE_ADAPTIVE) {
-        for (int l = 0, size = o->grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
+    printf("noise_octaves=%llu\n", t->noise_octaves);
+    if (o->k.mode == RT_MODE_ADAPTIVE) {
+        for (int l = 0, size = o->k.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
             printf("squares_%d=%llu\nsplit_%d=%llu\n", size, t->squares[l], size, t->split[l]);
         printf("split_object=%llu\nsplit_light=%llu\nsplit_secondary=%llu\nsplit_contrib=%llu\n",
                t->split_by[RT_SPLIT_OBJECT], t->split_by[RT_SPLIT_LIGHT],
@@ -485,13 +413,11 @@ static const scn_desc *app_scene(const app_opts *o, const char **name)
     return &file.desc;
 }
 
-/* Options as the command line gives them; threshold and min_contrib in 1/10000
- * (RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB). */
+/* Options as the command line gives them. */
 static app_opts app_defaults(int play)
 {
-    return (app_opts){.width = play ? 640 : 320, .height = play ? 480 : 240, .depth = -1,
-                      .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID, .threshold = 625,
-                      .min_contrib = 100, .step = 1, .threads = plat_cpu_count(), .play = play};
+    return (app_opts){.width = play ? 640 : 320, .height = play ? 480 : 240, .k = KNOBS_DEFAULTS,
+                      .step = 1, .threads = plat_cpu_count(), .play = play};
 }
 
 static int app_play(int argc, char **argv)
@@ -503,9 +429,7 @@ static int app_play(int argc, char **argv)
     play_opts p = {.width = o.width, .height = o.height, .threads = o.threads,
                    .frames = o.play_frames, .screenshot = o.screenshot,
                    .show_samples = o.show_samples,
-                   .params = {.depth = o.depth, .mode = o.mode, .grid = o.grid,
-                              .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
-                              .threshold = r_from_ratio((int32_t)o.threshold, APP_SCALE)}};
+                   .params = knobs_params(&o.k, -1)};
     p.desc = app_scene(&o, &p.name);
     if (!p.desc)
         return 2;
@@ -574,12 +498,7 @@ static int app_render(int argc, char **argv)
 
     /* Frame buffer, working storage of the adaptive mode and the map of traced points: the
      * same for every frame, allocated once. */
-    rt_params params = {
-        .min_contrib = r_from_ratio((int32_t)o.min_contrib, APP_SCALE),
-        .mode = o.mode,
-        .grid = o.grid,
-        .threshold = r_from_ratio((int32_t)o.threshold, APP_SCALE),
-    };
+    rt_params params = knobs_params(&o.k, 0); /* the depth is set per frame */
     unsigned long work_bytes = rt_render_work_size(&params, o.width);
     size_t pixels = (size_t)o.width * (size_t)o.height;
     frame_ctx fc;
@@ -613,7 +532,7 @@ static int app_render(int argc, char **argv)
         scn_eval(desc, t, &scene);
         if (o.effects_all)
             rt_scene_force_effects(&scene);
-        params.depth = o.depth >= 0 ? o.depth : scene.depth;
+        params.depth = o.k.depth >= 0 ? o.k.depth : scene.depth;
         rt_view_init(&view, &scene.camera, o.width, o.height);
         rt_stats stats = {0};
         uint64_t t0 = app_us();

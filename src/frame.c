@@ -94,6 +94,7 @@ void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, cons
         stats->rays_reflect += t->rays_reflect;
         stats->rays_refract += t->rays_refract;
         stats->shadow_tests += t->shadow_tests;
+        stats->noise_octaves += t->noise_octaves;
         for (int l = 0; l < RT_GRID_LEVELS; l++) {
             stats->squares[l] += t->squares[l];
             stats->split[l] += t->split[l];

@@ -9,15 +9,18 @@
  *                            log `frame=N instructions=M` for each, then the mean and worst
  *   show N                   render frame N, show it, log `shown frame=N` and keep it on the
  *                            display until stopped (lets a test grab the display)
+ * Every command also takes the render settings of `render` (src/knobs.h): --depth, --mode,
+ * --grid (4 or 8: the working storage of grids 2 and 16 does not fit the board's RAM budget),
+ * --threshold, --min-contrib, --octaves; their defaults are render's. A frame is byte for byte
+ * `build/rt-fixed render --size 320x240 --frame N` with the same settings.
  * `instructions` is the platform clock in nanoseconds across rt_render: under QEMU with
  * `-icount shift=0` a guest instruction advances that clock by exactly 1 ns.
- * Settings are the defaults of `render` (adaptive, grid 8, the scene's depth), so frames are
- * byte for byte those of `build/rt-fixed render --size 320x240 --frame N`.
  * Nothing here allocates: the scene and the adaptive mode's working storage are static.
  */
 #include <stddef.h>
 #include <stdint.h>
 
+#include "knobs.h"
 #include "platform.h"
 #include "rt.h"
 #include "scn.h"
@@ -28,12 +31,14 @@ extern const scn_desc scn_intro;
 #define INTRO_W 320
 #define INTRO_H 240
 
-/* Working storage of the adaptive mode at INTRO_W with the default grid: two rows of corners
- * and one square's samples (see rt_render_work_size). */
-#define INTRO_WORK_SAMPLES                                                                       \
-    (2 * (INTRO_W / RT_DEFAULT_GRID + 2) + (RT_DEFAULT_GRID + 1) * (RT_DEFAULT_GRID + 1))
+/* Working storage of the adaptive mode at INTRO_W (see rt_render_work_size): two rows of
+ * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
+ * default). Grids 2 and 16 need about 10 KB more, beyond the board's 32 KiB RAM budget. */
+#define INTRO_WORK(g) (2 * (INTRO_W / (g) + 2) + ((g) + 1) * ((g) + 1))
+#define INTRO_WORK_SAMPLES (INTRO_WORK(4) > INTRO_WORK(8) ? INTRO_WORK(4) : INTRO_WORK(8))
 static rt_sample intro_work[INTRO_WORK_SAMPLES];
 static rt_scene intro_scene;
+static knobs intro_knobs = KNOBS_DEFAULTS; /* the command's render settings */
 
 /* A line of log text under construction. */
 typedef struct intro_line {
@@ -77,15 +82,8 @@ static void intro_log2(const char *a, uint64_t va, const char *b, uint64_t vb)
 /* A whole number in [0, max], or -1. */
 static long intro_arg(const char *s, long max)
 {
-    long v = 0;
-    if (!*s)
-        return -1;
-    for (; *s; s++) {
-        if (*s < '0' || *s > '9' || v > (max - (*s - '0')) / 10)
-            return -1;
-        v = v * 10 + (*s - '0');
-    }
-    return v;
+    long v;
+    return knobs_int(s, NULL, 0, max, &v) == 0 ? v : -1;
 }
 
 static unsigned intro_len(const char *s)
@@ -112,9 +110,7 @@ static long intro_last_frame(void)
 static uint64_t intro_render(const plat_frame *f, int32_t ms)
 {
     scn_eval(&scn_intro, ms, &intro_scene);
-    rt_params p = {.depth = intro_scene.depth, .min_contrib = RT_DEFAULT_MIN_CONTRIB,
-                   .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID,
-                   .threshold = RT_DEFAULT_THRESHOLD};
+    rt_params p = knobs_params(&intro_knobs, intro_scene.depth);
     rt_view v;
     rt_view_init(&v, &intro_scene.camera, f->width, f->height);
     rt_stats stats = {0};
@@ -271,12 +267,50 @@ static int intro_show(int argc, char **argv)
         plat_time_ns(); /* the board has nothing else to do */
 }
 
+/* Takes the render settings (--depth N, ...) out of argv, keeping the other arguments in
+ * order; returns how many those are, or -1 after logging what is wrong. */
+static int intro_take_knobs(int argc, char **argv)
+{
+    int n = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *expected = "needs a value";
+        if (!knobs_is_option(argv[i])) {
+            argv[n++] = argv[i];
+        } else if (i + 1 == argc || knobs_parse(&intro_knobs, argv[i], argv[i + 1], &expected) < 0) {
+            intro_line l = {.n = 0};
+            intro_str(&l, "intro: error: ");
+            intro_str(&l, argv[i]);
+            intro_str(&l, ": ");
+            intro_str(&l, expected);
+            if (i + 1 < argc) {
+                intro_str(&l, ", got '");
+                intro_str(&l, argv[i + 1]);
+                intro_str(&l, "'");
+            }
+            plat_log(l.s);
+            return -1;
+        } else {
+            i++;
+        }
+    }
+    return n;
+}
+
 int app_main(int argc, char **argv)
 {
-    if (rt_render_work_size(&(rt_params){.mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID},
-                            INTRO_W) > sizeof intro_work) {
-        plat_log("intro: error: working storage too small");
-        return 1;
+    if (argc > 2) {
+        int n = intro_take_knobs(argc - 2, argv + 2);
+        if (n < 0)
+            return 2;
+        argc = 2 + n;
+    }
+    rt_params p = knobs_params(&intro_knobs, 0);
+    if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work) {
+        intro_line l = {.n = 0};
+        intro_str(&l, "intro: error: --grid: the board's working storage holds grids 4 and 8, not ");
+        intro_num(&l, (uint64_t)p.grid);
+        plat_log(l.s);
+        return 2;
     }
     if (argc < 2 || intro_streq(argv[1], "play")) {
         if (argc > 2) {
@@ -292,6 +326,7 @@ int app_main(int argc, char **argv)
     if (intro_streq(argv[1], "show"))
         return intro_show(argc - 2, argv + 2);
     plat_log("intro: error: unknown command (commands: play, frames [--out PREFIX] N..., "
-             "bench FIRST LAST STEP, show N)");
+             "bench FIRST LAST STEP, show N; each with render's --depth, --mode, --grid, "
+             "--threshold, --min-contrib, --octaves)");
     return 2;
 }

@@ -172,6 +172,8 @@ typedef struct rt_params {
     int grid;         /* adaptive: size of the top-level squares, 2, 4, 8 or 16 */
     real threshold;   /* adaptive: split when a node's contribution differs by more than this
                          between corners (colour units, 0..1; 1 disables the criterion) */
+    int octaves;      /* cap on noise octaves: each texture sums min(its octaves, this);
+                         0 = every texture's own (the scene's) */
 } rt_params;
 
 /* Defaults of the command line (see README). */
@@ -182,6 +184,8 @@ typedef struct rt_params {
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
     uint32_t shadow_tests; /* object intersection tests made by shadow rays */
+    uint32_t noise_octaves; /* noise octaves summed by the textures evaluated (each noise
+                               texture at a point adds the octaves it sums) */
     uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
     uint32_t split_by[5];             /* adaptive: splits by enum rt_split_reason */
@@ -302,8 +306,11 @@ static inline uint32_t rt_color_pixel(rt_color c)
     return (uint32_t)r_to_byte(c.x) << 16 | (uint32_t)r_to_byte(c.y) << 8 | r_to_byte(c.z);
 }
 
-/* The diffuse colour of material m at the scene point p (its texture, if any); *cell gets
- * the id of the texture cell p lies in (checkerboard), 0 for textures without cells. */
-rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell);
+/* The diffuse colour of material m at the scene point p (its texture, if any), its noise
+ * summed over at most max_octaves octaves (0: the texture's own count), which are added to
+ * st->noise_octaves; *cell gets the id of the texture cell p lies in (checkerboard), 0 for
+ * textures without cells. */
+rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stats *st,
+                          uint8_t *cell);
 
 #endif

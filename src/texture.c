@@ -2,7 +2,8 @@
 #include "noise.h"
 #include "rt.h"
 
-rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell)
+rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stats *st,
+                          uint8_t *cell)
 {
     const rt_texture *tx = &m->tex;
     *cell = 0;
@@ -28,6 +29,8 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell)
     }
     if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) == 0)
         return m->diffuse; /* a compiled-in scene without noise textures links no noise code */
+    int octaves = max_octaves > 0 && max_octaves < tx->octaves ? max_octaves : tx->octaves;
+    st->noise_octaves += (uint32_t)octaves;
     switch (tx->kind) {
     case RT_TEX_MARBLE: {
         /* Veins: a sine across x and y whose phase is pushed around by turbulence. The sine
@@ -35,18 +38,18 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, uint8_t *cell)
          * first: the phase then stays small wherever the point lies. */
         vec3 w = rt_noise_wrap(q);
         real phase = r_add(r_add(w.x, r_shr(w.y, 1)),
-                           r_mul(tx->turbulence, rt_turbulence(q, tx->octaves)));
+                           r_mul(tx->turbulence, rt_turbulence(q, octaves)));
         real s = r_sin(r_mul(phase, R_PI));
         return rt_palette(tx->palette, r_add(R(0.5), r_shr(s, 1)));
     }
     case RT_TEX_WOOD: {
         /* Rings around the y axis, made irregular by noise. */
-        real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm(q, tx->octaves)));
+        real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm(q, octaves)));
         return rt_palette(tx->palette, r_mod_pow2(ring, R_ONE));
     }
     case RT_TEX_NOISE:
     default: {
-        real n = rt_fbm(q, tx->octaves);
+        real n = rt_fbm(q, octaves);
         return rt_palette(tx->palette, r_add(R(0.5), r_shr(n, 1)));
     }
     }

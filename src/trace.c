@@ -7,6 +7,7 @@ typedef struct trace_ctx {
     rt_stats *stats;
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
+    int octaves;      /* cap on noise octaves (rt_params.octaves) */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
 } trace_ctx;
 
@@ -51,7 +52,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) ? rt_texture_color(m, p, &cell) : m->diffuse;
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) ? rt_texture_color(m, p, c->octaves, c->stats, &cell) : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
@@ -157,7 +158,7 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s, stats, out, p->min_contrib, eye_prepared};
+    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)

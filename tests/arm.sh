@@ -67,6 +67,46 @@ if platform/arm/qemu.sh frames fixed16 "${FRAMES[@]}" >"$T/fixed16.log" 2>&1; th
 else
   fail "arm: qemu-frames fixed16: $(tail -2 "$T/fixed16.log" | tr '\n' ' ')"
 fi
+# Render settings on the board (qemu.sh passes them to src/intro.c): each set gives frames
+# byte for byte those of the host's rt-fixed with the same settings, other pictures than the
+# default's, and other instruction counts.
+SET_FRAMES=(425 875)
+for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2"; do
+  tag=$(tr -c 'a-z0-9\n' _ <<<"$S")
+  # shellcheck disable=SC2086  # settings are words on purpose
+  if platform/arm/qemu.sh frames fixed $S "${SET_FRAMES[@]}" >"$T/set-$tag.log" 2>&1; then
+    bad=""
+    for n in "${SET_FRAMES[@]}"; do
+      # shellcheck disable=SC2086
+      "$B/rt-fixed" render --size 320x240 --frame "$n" $S -o "$T/host-set-$tag-$n.ppm" 2>/dev/null || bad="$bad host render of $n failed;"
+      cmp -s "$(ppm fixed "$n")" "$T/host-set-$tag-$n.ppm" || bad="$bad frame $n differs from the host's;"
+      cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" && bad="$bad frame $n is the default frame;"
+      c=$(sed -n "s/^frame=$n instructions=\([0-9]*\)$/\1/p" "$T/set-$tag.log")
+      c0=$(sed -n "s/^frame=$n instructions=\([0-9]*\)$/\1/p" "$T/fixed-1.log")
+      { [ -n "$c" ] && [ "$c" -gt 0 ] && [ "$c" != "$c0" ]; } || bad="$bad frame $n: $c instructions (default $c0);"
+      counts="${counts:-}$n: $c (default $c0) "
+    done
+    if [ -z "$bad" ]; then
+      pass "arm: fixed frames ${SET_FRAMES[*]} with $S bit-identical to rt-fixed render with them, not the default frames; instructions ${counts}"
+    else
+      fail "arm: settings $S:$bad"
+    fi
+    counts=""
+  else
+    fail "arm: qemu-frames fixed $S: $(tail -2 "$T/set-$tag.log" | tr '\n' ' ')"
+  fi
+done
+# A setting the board cannot take gets one line and status 2, before any frame.
+for S in "--grid 16" "--octaves 9" "--threshold 2"; do
+  # shellcheck disable=SC2086
+  out=$(platform/arm/qemu.sh bench fixed $S 0 0 1 2>&1)
+  st=$?
+  if [ $st -eq 2 ] && grep -q "^intro: error: ${S%% *}: " <<<"$out" && ! grep -q '^frame=' <<<"$out"; then
+    pass "arm: bench $S refused on the board: $(grep '^intro: error' <<<"$out")"
+  else
+    fail "arm: bench $S: status $st: $(tr '\n' ' ' <<<"$out")"
+  fi
+done
 
 # Soft-float: the same sources in float, against the host's float build.
 if platform/arm/qemu.sh frames float "${FRAMES[@]}" >"$T/float.log" 2>&1; then

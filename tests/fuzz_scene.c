@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "noise.h"
 #include "rt.h"
 #include "scn.h"
 #include "scn_parse.h"
@@ -47,6 +48,7 @@ static void fz_render(uint64_t h)
         .mode = (h & 32) ? RT_MODE_FULL : RT_MODE_ADAPTIVE,
         .grid = grids[(h >> 6) & 3],
         .threshold = (h & 256) ? 0 : RT_DEFAULT_THRESHOLD,
+        .octaves = (int)((h >> 40) % (RT_NOISE_MAX_OCTAVES + 1)), /* 0: the scene's */
     };
     unsigned long need = rt_render_work_size(&p, FZ_W);
     if (need > sizeof fz_work)

@@ -53,6 +53,28 @@ for real in fixed float; do
   done
 done
 
+# Render settings reach the player: frame 425 (day: noise textures) with a cap on noise octaves
+# and other settings equals render's with the same settings, and differs from the default frame.
+S="--octaves 1 --grid 4 --threshold 0.03 --depth 2"
+for real in fixed float; do
+  shot=$T/play-set-$real.png
+  # shellcheck disable=SC2086  # settings are words on purpose
+  if xrun "$B/rt-$real" play --frames 426 --size 160x120 --threads 2 $S --screenshot "$shot" \
+      >"$T/play-set-$real.log" 2>&1 &&
+     "$B/rt-$real" render --frame 425 --size 160x120 $S -o "$T/render-set-$real.png" 2>/dev/null &&
+     "$B/rt-$real" render --frame 425 --size 160x120 -o "$T/render-def-$real.png" 2>/dev/null; then
+    same=$("$B/rt-cmp" "$shot" "$T/render-set-$real.png" 2>&1)
+    other=$("$B/rt-cmp" "$shot" "$T/render-def-$real.png" 2>&1)
+    if grep -q 'differing=0 ' <<<"$same" && ! grep -q 'differing=0 ' <<<"$other"; then
+      pass "rt-$real play $S: screenshot = render --frame 425 $S, not the default frame ($other)"
+    else
+      fail "rt-$real play $S: against render with them: $same; against the default: $other"
+    fi
+  else
+    fail "rt-$real play $S under Xvfb: $(tail -2 "$T/play-set-$real.log" | tr '\n' ' ')"
+  fi
+done
+
 # The intro player (build/intro-*) shows the same frames.
 for real in fixed float; do
   shot=$T/intro-$real.png

@@ -166,6 +166,39 @@ else
   fail "--depth 0 still casts secondary rays"
 fi
 
+# --octaves N caps every noise texture's octaves. The textures scene has noise textures of 3 and
+# 4 octaves: --octaves 1 and 3 change the picture and sum fewer octaves (noise_octaves=, the
+# noise work done), 4 (the scene's most) and 8 change nothing, byte for byte; in both builds.
+for real in fixed float; do
+  oct() { $B/rt-$real render --scene scenes/textures.scene --time 6 --threads 1 --stats "$@" 2>/dev/null |
+          sed -n 's/^noise_octaves=//p'; }
+  n0=$(oct -o "$T/oct-$real.ppm")
+  bad=""
+  for k in 1 3 4 8; do
+    nk=$(oct --octaves $k -o "$T/oct-$real-$k.ppm")
+    if [ $k -ge 4 ]; then
+      cmp -s "$T/oct-$real.ppm" "$T/oct-$real-$k.ppm" && [ "$nk" = "$n0" ] ||
+        bad="$bad --octaves $k changed the picture or noise_octaves ($nk, not $n0);"
+    else
+      d=$($B/rt-cmp "$T/oct-$real.ppm" "$T/oct-$real-$k.ppm" | sed -n 's/.*differing=\([0-9]*\).*/\1/p')
+      [ "${d:-0}" -gt 0 ] && [ -n "$nk" ] && [ "$nk" -lt "$n0" ] ||
+        bad="$bad --octaves $k: $d pixels differ, noise_octaves=$nk (default $n0);"
+    fi
+    eval "n$k=\$nk"
+  done
+  if [ -z "$bad" ] && [ "${n0:-0}" -gt 0 ] && [ "$n1" -lt "$n3" ]; then
+    pass "--octaves ($real): noise_octaves $n0 (scene's), 3: $n3, 1: $n1, pictures changed; 4 and 8 byte-identical to the scene's"
+  else
+    fail "--octaves ($real):$bad (noise_octaves ${n0:-none} by default, 1: ${n1:-}, 3: ${n3:-})"
+  fi
+done
+stats=$($B/rt-fixed render --scene scenes/diffuse.scene --octaves 2 --stats -o "$T/oct-diffuse.png" 2>/dev/null)
+if grep -q '^noise_octaves=0$' <<<"$stats" && grep -q '^octaves=2$' <<<"$stats"; then
+  pass "--octaves on a scene without noise: octaves=2, noise_octaves=0"
+else
+  fail "--octaves on a scene without noise: $(grep octaves <<<"$stats" | tr '\n' ' ')"
+fi
+
 # ---- several frames in one process: --frames, --step, -o pattern, --checksum -----------------------
 # Each frame of a multi-frame render is byte for byte the frame a single render gives (no state
 # carries over from one frame to the next), and --checksum prints the same hash for it.
@@ -592,21 +625,24 @@ fi
 # ---- make tradeoff's script, QUICK=1: runs end to end and writes a well-formed table ------------
 # Form, not timings: one row per configuration (float default, fixed full), ms > 0 with the worst
 # frame no faster than the mean, PSNR a number or inf (worst <= mean), over8 a share in 0..100 %,
-# and the plot written as a PNG.
+# and the plot written as a PNG. The ARM926 column: the fixed full row (a non-default setting on
+# the board) has a positive whole count of instructions, other than the board's default's.
 trade_md=$T/tradeoff-quick.md
 if QUICK=1 tests/tradeoff.sh -o "$trade_md" >"$T/tradeoff-quick.out" 2>"$T/tradeoff-quick.err"; then
   problems=$(awk -F' *[|] *' '
     function db(s) { sub(/ dB$/, "", s); return s }
     function isdb(s) { return s ~ /^(inf|-?[0-9]+[.][0-9]+) dB$/ }
-    /^[|] build [|] configuration [|] render options [|] mean ms [|] worst-frame ms [|]/ { head = 1 }
+    /^[|] build [|] configuration [|] render options [|] mean ms [|] worst-frame ms [|] x float default [|] ARM Minstr\/frame [|] x ARM fixed default [|]/ { head = 1 }
     /^[|] (float|fixed) [|]/ {
       key = $2 "/" $3
       if (key in seen) print "duplicate row " key
       seen[key] = 1; n++
       if (!($5 + 0 > 0 && $6 + 0 >= $5 + 0)) print "bad mean/worst ms: " $0
-      if (!isdb($8) || !isdb($9)) print "PSNR not a number or inf: " $0
-      else if (db($8) != "inf" && (db($9) == "inf" || db($9) + 0 > db($8) + 0)) print "worst PSNR above the mean: " $0
-      if ($10 !~ /^[0-9]+[.][0-9]+ %$/ || $10 + 0 > 100 || $11 !~ /^[0-9]+[.][0-9]+ %$/ || $11 + 0 < $10 + 0) print "bad over8: " $0
+      if ($8 !~ /^[0-9]+[.][0-9]$/ || $8 + 0 <= 0) print "ARM926 Minstr/frame not a positive number: " $0
+      if ($2 == "fixed" && ($9 !~ /^[0-9]+[.][0-9][0-9]$/ || $9 == "1.00")) print "fixed full: ARM926 count not other than the default: " $0
+      if (!isdb($10) || !isdb($11)) print "PSNR not a number or inf: " $0
+      else if (db($10) != "inf" && (db($11) == "inf" || db($11) + 0 > db($10) + 0)) print "worst PSNR above the mean: " $0
+      if ($12 !~ /^[0-9]+[.][0-9]+ %$/ || $12 + 0 > 100 || $13 !~ /^[0-9]+[.][0-9]+ %$/ || $13 + 0 < $12 + 0) print "bad over8: " $0
     }
     END {
       if (!head) print "no table header"
@@ -618,8 +654,12 @@ if QUICK=1 tests/tradeoff.sh -o "$trade_md" >"$T/tradeoff-quick.out" 2>"$T/trade
     problems+="${problems:+$nl}no PNG plot at $png"
   grep -q 'tradeoff: frame 1/1 (t=14 s), round 1/1' "$T/tradeoff-quick.err" ||
     problems+="${problems:+$nl}no progress on standard error"
+  arm_def=$(sed -n 's/^tradeoff: ARM926 fixed (defaults), frame 350: \([0-9]*\) instructions$/\1/p' "$T/tradeoff-quick.err")
+  arm_full=$(sed -n 's/^tradeoff: ARM926 fixed --mode full, frame 350: \([0-9]*\) instructions$/\1/p' "$T/tradeoff-quick.err")
+  [[ "$arm_full" =~ ^[1-9][0-9]*$ ]] && [[ "$arm_def" =~ ^[1-9][0-9]*$ ]] && [ "$arm_full" != "$arm_def" ] ||
+    problems+="${problems:+$nl}ARM926 counts: fixed --mode full '$arm_full', fixed default '$arm_def' (want two different positive whole numbers)"
   if [ -z "$problems" ]; then
-    pass "make tradeoff's script (QUICK=1): $(grep -cE '^[|] (float|fixed) [|]' "$trade_md") rows with ms, PSNR and over8, and the plot"
+    pass "make tradeoff's script (QUICK=1): $(grep -cE '^[|] (float|fixed) [|]' "$trade_md") rows with ms, ARM926 instructions, PSNR and over8, and the plot; board frame 350: $arm_full instructions with --mode full, $arm_def by default"
   else
     fail "make tradeoff's script (QUICK=1) wrote a malformed $trade_md:"
     sed 's/^/       /' <<<"$problems"

@@ -47,8 +47,9 @@ build() {
 }
 
 # The fixed ARM image $1 around generated scene source $2 (named scn_intro) and effects header
-# $3: the core compiled for the ARM926 with the scene's effects; intro.c, the backend and
-# libfixmath as `make arm` built them.
+# $3: the core compiled for the ARM926 with the scene's effects; intro.c and knobs.c (the
+# board's command line, which no effect changes), the backend and libfixmath as `make arm`
+# built them.
 ARM_CC=arm-none-eabi-gcc
 ARM_ARCH="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
 AO=$B/obj/arm-fixed
@@ -61,7 +62,7 @@ build_arm() {
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/platform/arm/arm.o" \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/src/knobs.o" "$AO/platform/arm/arm.o" \
     "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
 }
 arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }

@@ -2,10 +2,15 @@
 # qemu.sh: runs the ARM926 intro image on qemu-system-arm -M versatilepb: play it in QEMU's window, render frames to files, or benchmark a stretch.
 #
 # Usage (from the top of the repository; make qemu, make qemu-frames and make qemu-bench call it):
-#   platform/arm/qemu.sh play   [fixed|float]                  QEMU's window, the intro looping
-#   platform/arm/qemu.sh frames [fixed|float] N...             build/qemu/<real>-NNNN.ppm
-#   platform/arm/qemu.sh bench  [fixed|float] FIRST LAST STEP  frames FIRST..LAST every STEP
-# (fixed16 in place of fixed or float: build/arm/intro-fixed16.elf, unit vectors in Q16.16)
+#   platform/arm/qemu.sh play   [REAL] [SETTINGS]                  QEMU's window, the intro looping
+#   platform/arm/qemu.sh frames [REAL] [SETTINGS] N...             build/qemu/<real>-NNNN.ppm
+#   platform/arm/qemu.sh bench  [REAL] [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP
+# REAL is fixed (default), float (soft-float) or fixed16 (build/arm/intro-fixed16.elf, unit
+# vectors in Q16.16). SETTINGS are render's options --depth N, --mode full|adaptive, --grid N,
+# --threshold X, --min-contrib X and --octaves N (defaults as for render); the board parses and checks them
+# (grids 4 and 8 only: the working storage of grids 2 and 16 does not fit its RAM budget). A
+# fixed frame rendered with settings is byte for byte `build/rt-fixed render --size 320x240
+# --frame N SETTINGS`.
 # frames and bench run headless under `-icount shift=0` (one guest instruction = 1 ns of virtual
 # time, so the counts are exact and repeatable) and print one `frame=N instructions=M` line per
 # frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use (`ram: ...`). The exit status
@@ -15,7 +20,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
-usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float|fixed16] [ARGS...] (see the file's header)"
+usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float|fixed16] [SETTINGS] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
 cmd=$1
@@ -34,6 +39,20 @@ case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of 
 for a in "$@"; do
   case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
 done
+# The render settings go to the board first (it checks their values); the rest stay in order.
+settings=()
+args=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --depth|--mode|--grid|--threshold|--min-contrib|--octaves)
+      [ $# -ge 2 ] || die "$1 needs a value"
+      settings+=("$1" "$2")
+      shift 2 ;;
+    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves)" ;;
+    *) args+=("$1"); shift ;;
+  esac
+done
+set -- "${args[@]}"
 # The guest's argument list goes through semihosting: arg=intro,arg=CMD,arg=...
 semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 common=(-M versatilepb -m 2 -serial stdio -monitor none
@@ -46,7 +65,7 @@ case "$cmd" in
       die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-frames renders frames to files instead"
     fi
     echo "qemu: playing the $real intro at 320x240 on the emulated PL110; close the window or press Ctrl-C in this terminal to stop"
-    exec qemu-system-arm "${common[@]}" -semihosting-config "$(semihosting play)"
+    exec qemu-system-arm "${common[@]}" -semihosting-config "$(semihosting play "${settings[@]}")"
     ;;
   frames)
     [ $# -ge 1 ] || die "frames wants at least one frame number"
@@ -67,7 +86,7 @@ status=0
 # --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
 # SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
 timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none \
-  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "$@")" </dev/null ||
+  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
   echo "qemu.sh: error: the $real guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
