@@ -75,10 +75,10 @@ typedef fix16_t real; /* Q16.16 */
 typedef int32_t unit;  /* Q2.30 (FX_UNIT_FRAC 30) or Q16.16 (16) */
 typedef int32_t ustep; /* Q2.30 */
 typedef int64_t wide;  /* Q32.32 */
-typedef struct rinv { /* 1/r prepared for d3_norm_near: 2^s / r, and 2 r */
-    uint64_t m;
-    int s;
-    int64_t lim;
+typedef struct rinv { /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
+    uint32_t m;
+    int32_t s;
+    fix16_t r;
 } rinv;
 #else
 typedef float real;

@@ -526,33 +526,34 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
 }
 #endif
 
-/* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 31 + bits of r (so m is in
- * (2^31, 2^32]); m = 0 for r <= 0. Costs a 64-bit division: made once per object and frame. */
+/* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 30 + bits of r (so m is in
+ * (2^30, 2^31]), for r in [1/128, 2048] (the scene limits); m = 0 otherwise. Costs a 64-bit
+ * division: made once per object and frame. */
 static inline rinv r_inv_len(real r)
 {
-    rinv k = {0, 0, 0};
-    if (r <= 0)
+    rinv k = {0, 0, r};
+    int bits = r > 0 ? 32 - __builtin_clz((uint32_t)r) : 0;
+    if (bits < 10 || bits > 28)
         return k;
-    k.s = 31 + (32 - __builtin_clz((uint32_t)r));
-    k.m = (((uint64_t)1 << k.s) + (uint64_t)r / 2) / (uint64_t)r;
-    k.lim = (int64_t)r * 2;
+    k.s = 30 + bits;
+    k.m = (uint32_t)((((uint64_t)1 << k.s) + (uint64_t)r / 2) / (uint64_t)r);
     return k;
 }
 
 /* Unit vector along v whose length is within about 2^-13 of the r that k was made from (a
- * point on a sphere minus its centre): v * (1/r) in Q.60 (Q.32 with unit in Q16.16), then
- * fx_renorm's correction, with no square root or division. Any other v gets d3_norm's result. */
+ * point on a sphere minus its centre): v * (1/r), then fx_renorm's correction, with no square
+ * root or division. Any other v gets d3_norm's result. */
 static inline dir3 d3_norm_near(vec3 v, rinv k)
 {
-    if (k.m == 0 || v.x > k.lim || v.x < -k.lim || v.y > k.lim || v.y < -k.lim ||
-        v.z > k.lim || v.z < -k.lim)
+    int64_t lim = (int64_t)k.r * 2;
+    if (k.m == 0 || v.x > lim || v.x < -lim || v.y > lim || v.y < -lim || v.z > lim || v.z < -lim)
         return FX_NORM_REALS(v.x, v.y, v.z, 0);
 #if FX_UF == 30
-    /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^60; times 2^(60 - s) it is v.x / r in Q.60 */
+    /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^59; times 2^(60 - s) it is v.x / r in Q.60 */
     int64_t f = (int64_t)1 << (60 - k.s);
     return fx_renorm(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
 #else
-    /* v.x m / 2^s is v.x / r; s >= 41 (r >= 1/128), so Q.32 is a right shift by s - 32 */
+    /* v.x m / 2^s is v.x / r; s >= 40 (r >= 1/128), so Q.32 is a right shift by s - 32 */
     int sh = k.s - 32;
     return fx_renorm(fx_round_shift(v.x * (int64_t)k.m, sh), fx_round_shift(v.y * (int64_t)k.m, sh),
                      fx_round_shift(v.z * (int64_t)k.m, sh));
