@@ -315,7 +315,7 @@ for t in $times; do arm_frames+="${arm_frames:+, }$(frame_of "$t" || true)"; don
   echo "- Frames: the intro at t = ${times// /, } s, $SIZE; $rounds round(s), each frame rendered by every configuration in turn (the order reversed every other round)"
   echo "- Reference: \`rt-float render $REF_OPTS\` (every pixel, every ray, the deepest recursion)"
   if [ "$arm" = 1 ]; then
-    echo "- ARM926 (\`qemu-system-arm -M versatilepb -icount shift=0\`: exact instruction counts): the same frames ($arm_frames) with the same settings, \`platform/arm/qemu.sh bench fixed|float SETTINGS N N 1\`; the fixed image with the default settings: $arm_base M instructions per frame"
+    echo "- ARM926 (\`qemu-system-arm -M versatilepb -icount shift=0\`: exact instruction counts): the same frames ($arm_frames) with the same settings, \`platform/arm/qemu.sh bench fixed|float|fixed16 SETTINGS N N 1\`; the fixed image with the default settings: $arm_base M instructions per frame"
   else
     echo "- ARM926: not measured in this run. $arm_note"
   fi
@@ -330,14 +330,14 @@ for t in $times; do arm_frames+="${arm_frames:+, }$(frame_of "$t" || true)"; don
     printf "| %s | %s | %s | %.2f | %.2f | %s | %s | %s | %s dB | %s dB | %.3f %% | %.3f %% | %s |\n",
       $2, $3, o, $5, $6, x, $12, $13, $7, $8, $9, $10, $11 }' "$rows"
   echo
-  echo "Every configuration changes one option of \`rt-float\`/\`rt-fixed render\` from the intro's"
+  echo "Every configuration changes one option of \`rt-float\`/\`rt-fixed\`/\`rt-fixed16 render\` from the intro's"
   echo "default (adaptive, \`--grid 8 --threshold 0.0625\`, the scene's depth 5, \`--min-contrib 0.01\`,"
   echo "each noise texture's own octaves: 4 for marble and lava, 3 for wood)."
   echo "**ms**: the tracer's own time per frame on one thread (\`--threads 1 --stats\`, its \`ms=\`:"
   echo "rendering, without writing the file), mean over frames and rounds; worst-frame: the slowest"
   echo "frame's mean over rounds. **ARM Minstr/frame**: million instructions per frame on the"
   echo "FPU-less ARM926 under QEMU, mean over the frames, counted across the board's \`rt_render\`:"
-  echo "the fixed image for the fixed rows, the soft-float image (the float build compiled with"
+  echo "the fixed (fixed16) image for the fixed (fixed16) rows, the soft-float image (the float build compiled with"
   echo "\`-mfloat-abi=soft\`) for the float rows; n/a: grids 2 and 16 need more working storage"
   echo "than the board's 32 KiB RAM budget holds, and it refuses them. **x ARM fixed default**:"
   echo "against the fixed image with the default settings. **PSNR** (\`rt-cmp\` against the"
@@ -346,12 +346,8 @@ for t in $times; do arm_frames+="${arm_frames:+, }$(frame_of "$t" || true)"; don
   echo "pictures. **over8**: pixels with a channel off by more than 8 of 255, as a share of all"
   echo "pixels, and of the worst frame's. **Pareto front**: no other configuration is both as cheap"
   echo "and as accurate: \`desktop\` by host ms among all rows, \`board\` by ARM926 instructions"
-  echo "among the rows the board ran (both images)."
-  echo
-  echo "Not measured yet:"
-  echo
-  echo "- A cheaper, less precise fixed-point variant (e.g. unit vectors in plain Q16.16): not yet"
-  echo "  available; the fixed rows are the fixed layer as shipped."
+  echo "among the rows the board ran (all three images). **fixed16** is the cheaper fixed variant: unit"
+  echo "vectors in Q16.16 instead of Q2.30 (\`-DFX_UNIT_FRAC=16\`, docs/numerics.md)."
   echo
   echo "## How to reproduce"
   echo
