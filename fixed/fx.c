@@ -159,6 +159,26 @@ static uint64_t fx_abs64(int64_t v)
     return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
 }
 
+/* The largest magnitude of three components: normalisation scales by it. */
+static uint64_t fx_max_abs3(int64_t x, int64_t y, int64_t z)
+{
+    uint64_t m = fx_abs64(x), t = fx_abs64(y);
+    if (t > m)
+        m = t;
+    t = fx_abs64(z);
+    return t > m ? t : m;
+}
+
+/* What normalising a zero vector gives: (0, 0, 0), length 0, and a domain event. */
+static dir3 fx_norm_zero(real *len)
+{
+    dir3 d = {0, 0, 0};
+    FX_EVENT(FX_EV_DOMAIN);
+    if (len)
+        *len = 0;
+    return d;
+}
+
 /* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
  * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
  * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
@@ -209,20 +229,10 @@ static int64_t fx_scale2(int64_t v, int s)
 
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    dir3 d = {0, 0, 0};
-    uint64_t m = fx_abs64(x);
-    uint64_t t = fx_abs64(y);
-    if (t > m)
-        m = t;
-    t = fx_abs64(z);
-    if (t > m)
-        m = t;
-    if (m == 0) {
-        FX_EVENT(FX_EV_DOMAIN);
-        if (len)
-            *len = 0;
-        return d;
-    }
+    uint64_t m = fx_max_abs3(x, y, z);
+    if (m == 0)
+        return fx_norm_zero(len);
+    dir3 d;
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
      * ones lose only bits far below the result's precision, and the sum of squares stays in
      * [2^58, 3 * 2^60). */
@@ -301,26 +311,11 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
     return d;
 }
 
-static dir3 fx_norm_zero(real *len)
-{
-    dir3 d = {0, 0, 0};
-    FX_EVENT(FX_EV_DOMAIN);
-    if (len)
-        *len = 0;
-    return d;
-}
-
 /* Unit in Q16.16, any 64-bit vector: the largest component is brought into [2^15, 2^16]
  * (rounded) and fx_norm_scaled does the rest. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    uint64_t m = fx_abs64(x);
-    uint64_t t = fx_abs64(y);
-    if (t > m)
-        m = t;
-    t = fx_abs64(z);
-    if (t > m)
-        m = t;
+    uint64_t m = fx_max_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
     int s = __builtin_clzll(m) - 48; /* m 2^s in [2^15, 2^16) */
@@ -340,13 +335,7 @@ static inline int32_t fx_round_shift32(int32_t v, int k)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
-    uint32_t t = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
-    if (t > m)
-        m = t;
-    t = z < 0 ? 0u - (uint32_t)z : (uint32_t)z;
-    if (t > m)
-        m = t;
+    uint32_t m = (uint32_t)fx_max_abs3(x, y, z); /* at most 2^31 */
     if (m == 0)
         return fx_norm_zero(len);
     int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */
