@@ -52,7 +52,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) ? rt_texture_color(m, p, c->octaves, c->stats, &cell) : m->diffuse;
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
+                        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
+                        : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
