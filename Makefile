@@ -51,7 +51,7 @@ FIXMATH_STAMP := $(FIXMATH_DIR)/.extracted
 FIXMATH_SRCS := fix16.c fix16_sqrt.c fix16_trig.c fix16_exp.c
 
 BASE_CFLAGS := -std=c11 $(WARN) -ffp-contract=off -fno-strict-aliasing -g
-CPPFLAGS := -Ifixed -Isrc -Iplatform -isystem $(FIXMATH_DIR)/libfixmath $(FIXMATH_DEFS)
+CPPFLAGS := -Ifixed -Isrc/core -Isrc/scene -Isrc/app -Iplatform -isystem $(FIXMATH_DIR)/libfixmath $(FIXMATH_DEFS)
 OPT := -O2
 SAN := -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 # The scene fuzzer: libFuzzer through clang, with ASan + UBSan and numeric event counting.
@@ -59,12 +59,16 @@ FUZZ_CC := clang
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all
 FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 
-# The tracer core: the same sources in every variant.
-CORE_SRCS := fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c \
-             src/texture.c src/scn.c src/knobs.c
+# The tracer core (src/core/, fixed/) and the integer-only scene code that every program,
+# the boards included, runs: the timeline and the render settings (src/scene/). The same
+# sources in every variant.
+TRACER_SRCS := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c \
+               src/core/render.c src/core/subsample.c src/core/noise.c src/core/texture.c
+SCENE_SRCS := src/scene/scn.c src/scene/knobs.c
+CORE_SRCS := $(TRACER_SRCS) $(SCENE_SRCS)
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app.c src/play.c src/frame.c src/scn_parse.c src/image.c src/outpath.c \
+APP_SRCS := src/app/app.c src/app/play.c src/app/frame.c src/scene/scn_parse.c src/app/image.c src/app/outpath.c \
             platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
@@ -108,7 +112,7 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/tools/cmp.c src/tools/scenec.c src/tools/edges.c tests/fuzz_scene.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/edges.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -150,17 +154,18 @@ $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
 $(BUILD)/rt-fixed16: $(CORE_OBJS_fixed16) $(APP_OBJS_fixed16) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
-$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/image.o $(BUILD)/obj/float/src/outpath.o
+$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/app/image.o $(BUILD)/obj/float/src/app/outpath.o
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 # The scene compiler runs at build time, so it is built from the float objects.
-$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scn_parse.o \
-                   $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
+$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scene/scn_parse.o \
+                   $(BUILD)/obj/float/src/scene/scn_cwrite.o \
+                   $(BUILD)/obj/float/src/app/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 
 # The subsampling bound (tests/bench_subsample.sh): float, like the reference it measures.
-$(BUILD)/rt-edges: $(BUILD)/obj/float/src/tools/edges.o $(BUILD)/obj/float/src/scn_parse.o \
-                   $(BUILD)/obj/float/src/outpath.o $(CORE_OBJS_float)
+$(BUILD)/rt-edges: $(BUILD)/obj/float/src/tools/edges.o $(BUILD)/obj/float/src/scene/scn_parse.o \
+                   $(BUILD)/obj/float/src/app/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 
 $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
@@ -172,7 +177,7 @@ $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
 
-$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ -lcmocka -lm
 endef
@@ -188,10 +193,10 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 
 
 # ---- the intro players (build/intro-fixed, build/intro-float): the original's 64 kB limit -----
-# The intro in a window and nothing else (src/player.c over play.c). Built for size: unused
+# The intro in a window and nothing else (src/app/player.c over play.c). Built for size: unused
 # functions dropped, no unwind tables, the hot tracer at -O2 and the rest at -Os.
-PLAYER_HOT := fixed/fx.c src/trace.c src/shapes.c src/subsample.c src/noise.c src/texture.c
-PLAYER_COLD := src/scene.c src/render.c src/scn.c src/play.c src/frame.c src/image.c src/player.c src/outpath.c \
+PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/subsample.c src/core/noise.c src/core/texture.c
+PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector
@@ -218,14 +223,14 @@ $(eval $(call player,float,0,))
 all: $(PLAYERS)
 
 # ---- ARM926 images: bare metal for qemu-system-arm -M versatilepb (platform/arm/) ---------
-# The same core, the intro compiled in, and src/intro.c (play, frames, bench) over the ARM
+# The same core, the intro compiled in, and src/app/intro.c (play, frames, bench) over the ARM
 # backend. Fixed: libfixmath compiled from the same fetched source; float: soft-float.
 ARM_CC := arm-none-eabi-gcc
 ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
-ARM_SRCS := $(CORE_SRCS) src/intro.c platform/arm/arm.c $(GEN)/scene_intro.c
+ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/arm/arm.c $(GEN)/scene_intro.c
 ARM_ELFS := $(BUILD)/arm/intro-fixed.elf $(BUILD)/arm/intro-float.elf
 # The cheaper fixed-point variant's image (make arm builds it too; qemu.sh bench fixed16).
 ARM_ELF_FIXED16 := $(BUILD)/arm/intro-fixed16.elf
@@ -259,13 +264,14 @@ endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
-# The board's command line (src/intro.c, src/knobs.c) runs once per command, outside the
+# The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/intro.o $(BUILD)/obj/arm-$(r)/src/knobs.o): ARM_COLD_OPT := -Os
+$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o): ARM_COLD_OPT := -Os
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
-$(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+$(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o \
+                         $(BUILD)/obj/$(1)/src/scene/scn_cwrite.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $$@ $$^ -lm
 endef

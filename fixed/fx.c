@@ -147,17 +147,26 @@ void u_sincos_deg(real deg, unit *s, unit *c)
         cs = tmp;
     }
     switch (quadrant) {
-    case 0: *s = sn; *c = cs; break;
-    case 1: *s = cs; *c = -sn; break;
-    case 2: *s = -sn; *c = -cs; break;
-    default: *s = -cs; *c = sn; break;
+    case 0:
+        *s = sn;
+        *c = cs;
+        break;
+    case 1:
+        *s = cs;
+        *c = -sn;
+        break;
+    case 2:
+        *s = -sn;
+        *c = -cs;
+        break;
+    default:
+        *s = -cs;
+        *c = sn;
+        break;
     }
 }
 
-static uint64_t fx_abs64(int64_t v)
-{
-    return v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-}
+static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t)v; }
 
 /* The largest magnitude of three components: normalisation scales by it. */
 static uint64_t fx_max_abs3(int64_t x, int64_t y, int64_t z)
@@ -222,10 +231,7 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
 
 #if FX_UF == 30
 /* Scale v by 2^s (s may be negative; a left shift never overflows here, see below). */
-static int64_t fx_scale2(int64_t v, int s)
-{
-    return s >= 0 ? v * ((int64_t)1 << s) : v >> -s;
-}
+static int64_t fx_scale2(int64_t v, int s) { return s >= 0 ? v * ((int64_t)1 << s) : v >> -s; }
 
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
@@ -273,7 +279,7 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
  * in 32 x 32-bit products, to about 2^-17 relative: enough for a Q16.16 result. */
 static inline uint32_t fx_rsqrt32(uint32_t x)
 {
-    uint32_t y = fx_rsqrt_tab[(x >> 23) - 128]; /* 2^30 / sqrt(x) within 2^-9 */
+    uint32_t y = fx_rsqrt_tab[(x >> 23) - 128];             /* 2^30 / sqrt(x) within 2^-9 */
     uint32_t t = (uint32_t)(((uint64_t)x * (y * y)) >> 30); /* x y^2 / 2^30, about 2^30 */
     uint64_t r = ((uint64_t)y * ((3u << 30) - t)) >> 15;
     return r > INT32_MAX ? INT32_MAX : (uint32_t)r;
@@ -328,10 +334,7 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 /* Round v 2^-k to nearest (half up) for k >= 1, in 32 bits without overflow: with
  * q = floor(v 2^(1-k)), floor((q + 1) / 2) is floor(v 2^-k + 1/2). */
-static inline int32_t fx_round_shift32(int32_t v, int k)
-{
-    return ((v >> (k - 1)) + 1) >> 1;
-}
+static inline int32_t fx_round_shift32(int32_t v, int k) { return ((v >> (k - 1)) + 1) >> 1; }
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
@@ -341,8 +344,8 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
     int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */
     if (s >= 0)
         return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
-    return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s), s,
-                          16, len);
+    return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s),
+                          s, 16, len);
 }
 #endif
 

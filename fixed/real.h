@@ -71,11 +71,11 @@ void fx_events_reset(void);
 
 #if REAL_FIXED
 #include <fix16.h>
-typedef fix16_t real; /* Q16.16 */
+typedef fix16_t real;  /* Q16.16 */
 typedef int32_t unit;  /* Q2.30 (FX_UNIT_FRAC 30) or Q16.16 (16) */
 typedef int32_t ustep; /* Q2.30 */
 typedef int64_t wide;  /* Q32.32 */
-typedef struct rinv { /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
+typedef struct rinv {  /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
     uint32_t m;
     int32_t s;
     fix16_t r;
@@ -155,10 +155,7 @@ static inline vec3 v3_mul(vec3 a, vec3 b)
 }
 
 /* a + b * s, component-wise. */
-static inline vec3 v3_madd(vec3 a, vec3 b, real s)
-{
-    return v3_add(a, v3_scale(b, s));
-}
+static inline vec3 v3_madd(vec3 a, vec3 b, real s) { return v3_add(a, v3_scale(b, s)); }
 
 /* The point o + d * t on a ray. */
 static inline vec3 v3_along(vec3 o, dir3 d, real t)
@@ -174,10 +171,7 @@ static inline int v3_within(vec3 p, real lim)
 }
 
 /* Is v the zero vector (which has no direction: test before d3_norm)? */
-static inline int v3_is_zero(vec3 v)
-{
-    return v.x == 0 && v.y == 0 && v.z == 0;
-}
+static inline int v3_is_zero(vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
 
 static inline dir3 d3_neg(dir3 d)
 {
@@ -186,25 +180,13 @@ static inline dir3 d3_neg(dir3 d)
 }
 
 /* Linear interpolation a + (b - a) * t. */
-static inline real r_lerp(real a, real b, real t)
-{
-    return r_add(a, r_mul(r_sub(b, a), t));
-}
+static inline real r_lerp(real a, real b, real t) { return r_add(a, r_mul(r_sub(b, a), t)); }
 
-static inline real r_clamp(real x, real lo, real hi)
-{
-    return x < lo ? lo : (x > hi ? hi : x);
-}
+static inline real r_clamp(real x, real lo, real hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
-static inline real r_min(real a, real b)
-{
-    return a < b ? a : b;
-}
+static inline real r_min(real a, real b) { return a < b ? a : b; }
 
-static inline real r_max(real a, real b)
-{
-    return a > b ? a : b;
-}
+static inline real r_max(real a, real b) { return a > b ? a : b; }
 
 /* base^n for base in [0, 1] and n >= 1, by repeated squaring (the same steps in both builds). */
 static inline unit u_pow(unit base, unsigned n)

@@ -20,7 +20,8 @@
 #define FX_UF2 (2 * FX_UNIT_FRAC)
 
 #define R(x) ((real)F16(x))
-#define U(x) ((unit)((x) >= 0 ? (x) * (double)(1LL << FX_UF) + 0.5 : (x) * (double)(1LL << FX_UF) - 0.5))
+#define U(x) \
+    ((unit)((x) >= 0 ? (x) * (double)(1LL << FX_UF) + 0.5 : (x) * (double)(1LL << FX_UF) - 0.5))
 #define R_ONE ((real)0x00010000)
 #define U_ONE ((unit)1 << FX_UF)
 /* Largest magnitude; -R_MAX is the most negative value produced (never INT32_MIN, which
@@ -82,22 +83,13 @@ static inline int64_t fx_round_shift(int64_t v, int s)
 
 /* ---- real: Q16.16 ------------------------------------------------------------------------ */
 
-static inline real r_from_int(int32_t i)
-{
-    return fx_sat((int64_t)i * 65536);
-}
+static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
 
 /* A Q16.16 integer (65536 = 1.0) as a real: exact. */
-static inline real r_from_q16(int32_t v)
-{
-    return (real)v;
-}
+static inline real r_from_q16(int32_t v) { return (real)v; }
 
 /* Nearest integer (half up). */
-static inline int32_t r_to_int(real a)
-{
-    return (int32_t)(((int64_t)a + 0x8000) >> 16);
-}
+static inline int32_t r_to_int(real a) { return (int32_t)(((int64_t)a + 0x8000) >> 16); }
 
 /* a * num / den for integers, rounded (den > 0): exact ratios such as pixel offsets. */
 static inline real r_from_ratio(int32_t num, int32_t den)
@@ -106,25 +98,13 @@ static inline real r_from_ratio(int32_t num, int32_t den)
     return fx_sat(n >= 0 ? (n + den / 2) / den : -((-n + den / 2) / den));
 }
 
-static inline real r_add(real a, real b)
-{
-    return fx_sat((int64_t)a + b);
-}
+static inline real r_add(real a, real b) { return fx_sat((int64_t)a + b); }
 
-static inline real r_sub(real a, real b)
-{
-    return fx_sat((int64_t)a - b);
-}
+static inline real r_sub(real a, real b) { return fx_sat((int64_t)a - b); }
 
-static inline real r_neg(real a)
-{
-    return fx_sat(-(int64_t)a);
-}
+static inline real r_neg(real a) { return fx_sat(-(int64_t)a); }
 
-static inline real r_abs(real a)
-{
-    return a < 0 ? r_neg(a) : a;
-}
+static inline real r_abs(real a) { return a < 0 ? r_neg(a) : a; }
 
 /* The same result as libfixmath's fix16_mul (rounded, overflow detected; the unit test checks
  * them bit for bit), written inline: fix16_mul lives in a separate object and is called about
@@ -144,22 +124,13 @@ static inline real r_mul(real a, real b)
 }
 
 /* a * 2^-n for n >= 0, rounded. */
-static inline real r_shr(real a, int n)
-{
-    return n > 0 ? (real)fx_round_shift(a, n) : a;
-}
+static inline real r_shr(real a, int n) { return n > 0 ? (real)fx_round_shift(a, n) : a; }
 
 /* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
-static inline real r_mul_sign(real v, int g)
-{
-    return fx_sat((int64_t)v * g);
-}
+static inline real r_mul_sign(real v, int g) { return fx_sat((int64_t)v * g); }
 
 /* Multiply by a small non-negative integer. */
-static inline real r_muli(real a, int32_t i)
-{
-    return fx_sat((int64_t)a * i);
-}
+static inline real r_muli(real a, int32_t i) { return fx_sat((int64_t)a * i); }
 
 static inline real r_div(real a, real b)
 {
@@ -230,22 +201,13 @@ static inline real r_mod(real x, real m)
 }
 
 /* x modulo m for m a positive power of two (as a real): the same as r_mod, by a mask. */
-static inline real r_mod_pow2(real x, real m)
-{
-    return x & (m - 1);
-}
+static inline real r_mod_pow2(real x, real m) { return x & (m - 1); }
 
 /* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m) (so in [0, m]): the same mask. */
-static inline real r_mod_pow2_twice(real x, real m)
-{
-    return r_mod_pow2(r_muli(x, 2), m);
-}
+static inline real r_mod_pow2_twice(real x, real m) { return r_mod_pow2(r_muli(x, 2), m); }
 
 /* real * unit -> real, rounded. */
-static inline real r_mul_u(real a, unit u)
-{
-    return fx_sat(fx_round_shift((int64_t)a * u, FX_UF));
-}
+static inline real r_mul_u(real a, unit u) { return fx_sat(fx_round_shift((int64_t)a * u, FX_UF)); }
 
 /* real / unit -> real, rounded to nearest. */
 static inline real r_div_u(real a, unit b)
@@ -276,31 +238,16 @@ static inline unit u_sat(int64_t v)
     return (unit)v;
 }
 
-static inline unit u_mul(unit a, unit b)
-{
-    return u_sat(fx_round_shift((int64_t)a * b, FX_UF));
-}
+static inline unit u_mul(unit a, unit b) { return u_sat(fx_round_shift((int64_t)a * b, FX_UF)); }
 
-static inline unit u_neg(unit a)
-{
-    return u_sat(-(int64_t)a);
-}
+static inline unit u_neg(unit a) { return u_sat(-(int64_t)a); }
 
-static inline unit u_add(unit a, unit b)
-{
-    return u_sat((int64_t)a + b);
-}
+static inline unit u_add(unit a, unit b) { return u_sat((int64_t)a + b); }
 
 /* unit * integer (pixel offsets along the image plane). */
-static inline unit u_muli(unit a, int32_t i)
-{
-    return u_sat((int64_t)a * i);
-}
+static inline unit u_muli(unit a, int32_t i) { return u_sat((int64_t)a * i); }
 
-static inline unit u_from_real(real a)
-{
-    return u_sat((int64_t)a * (1 << (FX_UF - 16)));
-}
+static inline unit u_from_real(real a) { return u_sat((int64_t)a * (1 << (FX_UF - 16))); }
 
 static inline real u_to_real(unit a)
 {
@@ -360,26 +307,14 @@ static inline uint8_t r_to_byte(real c)
 
 /* ---- wide: Q32.32 ------------------------------------------------------------------------ */
 
-static inline wide w_sq(real a)
-{
-    return (int64_t)a * a;
-}
+static inline wide w_sq(real a) { return (int64_t)a * a; }
 
 /* a * b as a wide (Q32.32), exact. */
-static inline wide w_mul(real a, real b)
-{
-    return (int64_t)a * b;
-}
+static inline wide w_mul(real a, real b) { return (int64_t)a * b; }
 
-static inline wide w_add(wide a, wide b)
-{
-    return a + b;
-}
+static inline wide w_add(wide a, wide b) { return a + b; }
 
-static inline wide w_sub(wide a, wide b)
-{
-    return a - b;
-}
+static inline wide w_sub(wide a, wide b) { return a - b; }
 
 /* Squared length |a|^2. Every vector given here is a difference of a scene position and a ray
  * origin (see the in-scene variants below): each component is below 24576 (raw < 2^31), so the
@@ -433,10 +368,7 @@ static inline vec3 d3_scale(dir3 d, real s)
 }
 
 /* The unit vector along v; its length goes to *len when len is not NULL. */
-static inline dir3 d3_norm(vec3 v, real *len)
-{
-    return FX_NORM_REALS(v.x, v.y, v.z, len);
-}
+static inline dir3 d3_norm(vec3 v, real *len) { return FX_NORM_REALS(v.x, v.y, v.z, len); }
 
 /* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
  * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 when
@@ -448,7 +380,8 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
 {
 #if FX_UF == 30
     int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
-    uint64_t big = (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
+    uint64_t big =
+        (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
     int sh = 2;
     while (big >> (31 + sh))
         sh++;
@@ -484,7 +417,8 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
  * leaves out is below 5/16 |e|^3 <= 2^-37); anything further from unit goes through fx_norm64. */
 static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
 {
-    const uint64_t two = (uint64_t)1 << 61; /* 2.0 in Q.60: beyond it the rounding below would not fit */
+    const uint64_t two = (uint64_t)1
+        << 61; /* 2.0 in Q.60: beyond it the rounding below would not fit */
     if (__builtin_expect((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
                              (uint64_t)z + two >= 2 * two,
                          0))
@@ -576,16 +510,16 @@ static inline dir3 d3_reflect(dir3 d, dir3 n)
 static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 {
     int64_t cosi = -fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z,
-                                   FX_UF); /* Q.F */
-    int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF);  /* Q.F, at most 9 * 2^F */
-    int64_t sin2 = U_ONE - ((cosi * cosi) >> FX_UF);       /* Q.F in [0, 1] */
-    const int pre = FX_UF == 30 ? 2 : 0;                   /* keeps the product below 2^62 */
+                                   FX_UF);               /* Q.F */
+    int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF); /* Q.F, at most 9 * 2^F */
+    int64_t sin2 = U_ONE - ((cosi * cosi) >> FX_UF);     /* Q.F in [0, 1] */
+    const int pre = FX_UF == 30 ? 2 : 0;                 /* keeps the product below 2^62 */
     int64_t k = U_ONE - ((eta2 * (sin2 >> pre)) >> (FX_UF - pre));
     if (k < 0)
         return 0;
-    int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);      /* Q.F */
-    int64_t m = (((int64_t)eta * cosi) >> 16) - cost;      /* Q.F, |m| < 2^(F + 3) */
-    int64_t e = (int64_t)eta * (1 << (FX_UF - 16));        /* eta in Q.F */
+    int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);  /* Q.F */
+    int64_t m = (((int64_t)eta * cosi) >> 16) - cost; /* Q.F, |m| < 2^(F + 3) */
+    int64_t e = (int64_t)eta * (1 << (FX_UF - 16));   /* eta in Q.F */
     int64_t x = e * d.x + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
     int64_t y = e * d.y + m * n.y;
     int64_t z = e * d.z + m * n.z;
@@ -599,10 +533,7 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
  * difference of the two is below 24576 (raw < 2^31), a dot product with a unit vector is a sum
  * of three products below 2^61, and w_len2 of such a difference stays below 2^63. Any breach is
  * signed overflow, which the UBSan test builds report. */
-static inline vec3 v3_sub_in(vec3 a, vec3 b)
-{
-    return v3(a.x - b.x, a.y - b.y, a.z - b.z);
-}
+static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static inline real v3_dot_d_in(vec3 v, dir3 d)
 {
     int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
@@ -615,4 +546,3 @@ static inline vec3 d3_scale_in(dir3 d, real s)
               (real)fx_round_shift((int64_t)s * d.z, FX_UF));
 }
 #endif
-

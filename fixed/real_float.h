@@ -35,51 +35,24 @@ static inline float fl_chk(float x)
 
 /* ---- real -------------------------------------------------------------------------------- */
 
-static inline real r_from_int(int32_t i)
-{
-    return (real)i;
-}
+static inline real r_from_int(int32_t i) { return (real)i; }
 
 /* A Q16.16 integer (65536 = 1.0) as a real: exact below 256 in magnitude. */
-static inline real r_from_q16(int32_t v)
-{
-    return (real)v * (1.0f / 65536.0f);
-}
+static inline real r_from_q16(int32_t v) { return (real)v * (1.0f / 65536.0f); }
 
-static inline int32_t r_to_int(real a)
-{
-    return (int32_t)floorf(a + 0.5f);
-}
+static inline int32_t r_to_int(real a) { return (int32_t)floorf(a + 0.5f); }
 
-static inline real r_from_ratio(int32_t num, int32_t den)
-{
-    return fl_chk((real)num / (real)den);
-}
+static inline real r_from_ratio(int32_t num, int32_t den) { return fl_chk((real)num / (real)den); }
 
-static inline real r_add(real a, real b)
-{
-    return fl_chk(a + b);
-}
+static inline real r_add(real a, real b) { return fl_chk(a + b); }
 
-static inline real r_sub(real a, real b)
-{
-    return fl_chk(a - b);
-}
+static inline real r_sub(real a, real b) { return fl_chk(a - b); }
 
-static inline real r_neg(real a)
-{
-    return -a;
-}
+static inline real r_neg(real a) { return -a; }
 
-static inline real r_abs(real a)
-{
-    return fabsf(a);
-}
+static inline real r_abs(real a) { return fabsf(a); }
 
-static inline real r_mul(real a, real b)
-{
-    return fl_chk(a * b);
-}
+static inline real r_mul(real a, real b) { return fl_chk(a * b); }
 
 /* a * 2^-n by a product with the exact power of two (folded to a constant for a constant n):
  * the same correctly rounded result as ldexpf, without the library call. */
@@ -90,15 +63,9 @@ static inline real r_shr(real a, int n)
 
 /* v * g for g in {-1, 0, 1}: g > 0 ? v : g < 0 ? -v : 0 (a product would give -0 for g = 0
  * and v < 0, so it stays a selection). */
-static inline real r_mul_sign(real v, int g)
-{
-    return g > 0 ? v : (g < 0 ? -v : 0.0f);
-}
+static inline real r_mul_sign(real v, int g) { return g > 0 ? v : (g < 0 ? -v : 0.0f); }
 
-static inline real r_muli(real a, int32_t i)
-{
-    return fl_chk(a * (real)i);
-}
+static inline real r_muli(real a, int32_t i) { return fl_chk(a * (real)i); }
 
 static inline real r_div(real a, real b)
 {
@@ -118,15 +85,9 @@ static inline real r_sqrt(real a)
     return fl_chk(sqrtf(a));
 }
 
-static inline real r_sin(real a)
-{
-    return fl_chk(sinf(a));
-}
+static inline real r_sin(real a) { return fl_chk(sinf(a)); }
 
-static inline real r_cos(real a)
-{
-    return fl_chk(cosf(a));
-}
+static inline real r_cos(real a) { return fl_chk(cosf(a)); }
 
 static inline real r_floor_split(real x, int32_t *i)
 {
@@ -165,57 +126,27 @@ static inline real r_mod_pow2_twice(real x, real m)
     return t;
 }
 
-static inline real r_mul_u(real a, unit u)
-{
-    return fl_chk(a * u);
-}
+static inline real r_mul_u(real a, unit u) { return fl_chk(a * u); }
 
-static inline real r_div_u(real a, unit b)
-{
-    return r_div(a, b);
-}
+static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
 /* ---- unit -------------------------------------------------------------------------------- */
 
-static inline unit u_mul(unit a, unit b)
-{
-    return fl_chk(a * b);
-}
+static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }
 
-static inline unit u_neg(unit a)
-{
-    return -a;
-}
+static inline unit u_neg(unit a) { return -a; }
 
-static inline unit u_add(unit a, unit b)
-{
-    return fl_chk(a + b);
-}
+static inline unit u_add(unit a, unit b) { return fl_chk(a + b); }
 
-static inline unit u_muli(unit a, int32_t i)
-{
-    return fl_chk(a * (unit)i);
-}
+static inline unit u_muli(unit a, int32_t i) { return fl_chk(a * (unit)i); }
 
-static inline unit u_from_real(real a)
-{
-    return a;
-}
+static inline unit u_from_real(real a) { return a; }
 
-static inline real u_to_real(unit a)
-{
-    return a;
-}
+static inline real u_to_real(unit a) { return a; }
 
-static inline unit u_divi(unit a, int32_t i)
-{
-    return a / (float)i;
-}
+static inline unit u_divi(unit a, int32_t i) { return a / (float)i; }
 
-static inline unit u_div(unit a, unit b)
-{
-    return r_div(a, b);
-}
+static inline unit u_div(unit a, unit b) { return r_div(a, b); }
 
 /* The camera's step per half pixel: tan / height with tan = s / c. */
 static inline ustep u_tan_step(unit s, unit c, int32_t height)
@@ -241,58 +172,28 @@ static inline uint8_t r_to_byte(real c)
 
 /* ---- wide -------------------------------------------------------------------------------- */
 
-static inline wide w_sq(real a)
-{
-    return fl_chk(a * a);
-}
+static inline wide w_sq(real a) { return fl_chk(a * a); }
 
-static inline wide w_mul(real a, real b)
-{
-    return fl_chk(a * b);
-}
+static inline wide w_mul(real a, real b) { return fl_chk(a * b); }
 
-static inline wide w_add(wide a, wide b)
-{
-    return a + b;
-}
+static inline wide w_add(wide a, wide b) { return a + b; }
 
-static inline wide w_sub(wide a, wide b)
-{
-    return a - b;
-}
+static inline wide w_sub(wide a, wide b) { return a - b; }
 
-static inline wide w_len2(vec3 a)
-{
-    return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z);
-}
+static inline wide w_len2(vec3 a) { return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z); }
 
-static inline real r_sqrt_w(wide a)
-{
-    return r_sqrt(a);
-}
+static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
 
-static inline real r_hypot(real a, real b)
-{
-    return fl_chk(sqrtf(a * a + b * b));
-}
+static inline real r_hypot(real a, real b) { return fl_chk(sqrtf(a * a + b * b)); }
 
 /* ---- vectors ----------------------------------------------------------------------------- */
 
-static inline real v3_dot_d(vec3 v, dir3 d)
-{
-    return fl_chk(v.x * d.x + v.y * d.y + v.z * d.z);
-}
+static inline real v3_dot_d(vec3 v, dir3 d) { return fl_chk(v.x * d.x + v.y * d.y + v.z * d.z); }
 
 /* Is v . d > 0? */
-static inline int v3_faces(vec3 v, dir3 d)
-{
-    return v.x * d.x + v.y * d.y + v.z * d.z > 0;
-}
+static inline int v3_faces(vec3 v, dir3 d) { return v.x * d.x + v.y * d.y + v.z * d.z > 0; }
 
-static inline unit d3_dot(dir3 a, dir3 b)
-{
-    return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z);
-}
+static inline unit d3_dot(dir3 a, dir3 b) { return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z); }
 
 static inline vec3 d3_scale(dir3 d, real s)
 {
@@ -317,16 +218,10 @@ static inline dir3 fl_norm(float x, float y, float z, real *len)
     return d;
 }
 
-static inline dir3 d3_norm(vec3 v, real *len)
-{
-    return fl_norm(v.x, v.y, v.z, len);
-}
+static inline dir3 d3_norm(vec3 v, real *len) { return fl_norm(v.x, v.y, v.z, len); }
 
 /* 1/r prepared for d3_norm_near (the float build normalises exactly and does not use it). */
-static inline rinv r_inv_len(real r)
-{
-    return r;
-}
+static inline rinv r_inv_len(real r) { return r; }
 
 /* Unit vector along v, whose length is about the r that k was made from. */
 static inline dir3 d3_norm_near(vec3 v, rinv k)
@@ -367,4 +262,3 @@ static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a
 static inline real v3_dot_d_in(vec3 v, dir3 d) { return v3_dot_d(v, d); }
 static inline vec3 d3_scale_in(dir3 d, real s) { return d3_scale(d, s); }
 #endif
-

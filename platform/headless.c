@@ -47,15 +47,9 @@ uint64_t plat_time_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
-void plat_log(const char *line)
-{
-    fprintf(stderr, "%s\n", line);
-}
+void plat_log(const char *line) { fprintf(stderr, "%s\n", line); }
 
-const char *plat_program(void)
-{
-    return plat_name;
-}
+const char *plat_program(void) { return plat_name; }
 
 int main(int argc, char **argv)
 {

@@ -55,9 +55,16 @@ void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx);
 /* ---- desktop only: a window and keys (platform/sdl.c) --------------------------------------- */
 
 /* What the player's keys ask for. */
-enum plat_key { PLAT_KEY_NONE, PLAT_KEY_QUIT, PLAT_KEY_PAUSE, PLAT_KEY_SAMPLES, PLAT_KEY_BACK,
-                PLAT_KEY_FORWARD, PLAT_KEY_GRID,
-                PLAT_KEY_REDRAW /* not a key: the window needs its picture again */ };
+enum plat_key {
+    PLAT_KEY_NONE,
+    PLAT_KEY_QUIT,
+    PLAT_KEY_PAUSE,
+    PLAT_KEY_SAMPLES,
+    PLAT_KEY_BACK,
+    PLAT_KEY_FORWARD,
+    PLAT_KEY_GRID,
+    PLAT_KEY_REDRAW /* not a key: the window needs its picture again */
+};
 
 /* Opens a resizable window showing frames of width x height, scaled to fit (F toggles full
  * screen). Returns 0, or -1 after printing a one-line error (no display). */

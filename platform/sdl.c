@@ -87,30 +87,24 @@ int plat_display_poll(int wait_ms)
     while (wait_ms > 0 ? SDL_WaitEventTimeout(&e, wait_ms) : SDL_PollEvent(&e)) {
         if (e.type == SDL_QUIT)
             return PLAT_KEY_QUIT;
-        if (e.type == SDL_WINDOWEVENT && (e.window.event == SDL_WINDOWEVENT_EXPOSED ||
-                                          e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED))
+        if (e.type == SDL_WINDOWEVENT &&
+            (e.window.event == SDL_WINDOWEVENT_EXPOSED ||
+             e.window.event == SDL_WINDOWEVENT_SIZE_CHANGED))
             return PLAT_KEY_REDRAW;
         if (e.type != SDL_KEYDOWN)
             continue;
         switch (e.key.keysym.sym) {
         case SDLK_ESCAPE:
-        case SDLK_q:
-            return PLAT_KEY_QUIT;
-        case SDLK_SPACE:
-            return PLAT_KEY_PAUSE;
+        case SDLK_q: return PLAT_KEY_QUIT;
+        case SDLK_SPACE: return PLAT_KEY_PAUSE;
         case SDLK_f:
             sdl_toggle_fullscreen(); /* the window's own business: scaling follows */
             break;
-        case SDLK_s:
-            return PLAT_KEY_SAMPLES;
-        case SDLK_LEFT:
-            return PLAT_KEY_BACK;
-        case SDLK_RIGHT:
-            return PLAT_KEY_FORWARD;
-        case SDLK_g:
-            return PLAT_KEY_GRID;
-        default:
-            break;
+        case SDLK_s: return PLAT_KEY_SAMPLES;
+        case SDLK_LEFT: return PLAT_KEY_BACK;
+        case SDLK_RIGHT: return PLAT_KEY_FORWARD;
+        case SDLK_g: return PLAT_KEY_GRID;
+        default: break;
         }
     }
     return PLAT_KEY_NONE;

@@ -65,7 +65,7 @@ int plat_cpu_count(void)
      * container's cpuset), not all of the machine's. */
     cpu_set_t set;
     long n = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set)
-                                                          : sysconf(_SC_NPROCESSORS_ONLN);
+                                                         : sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > PLAT_MAX_THREADS ? PLAT_MAX_THREADS : (int)n;
 }
 

@@ -67,7 +67,7 @@ if platform/arm/qemu.sh frames fixed16 "${FRAMES[@]}" >"$T/fixed16.log" 2>&1; th
 else
   fail "arm: qemu-frames fixed16: $(tail -2 "$T/fixed16.log" | tr '\n' ' ')"
 fi
-# Render settings on the board (qemu.sh passes them to src/intro.c): each set gives frames
+# Render settings on the board (qemu.sh passes them to src/app/intro.c): each set gives frames
 # byte for byte those of the host's rt-fixed with the same settings, other pictures than the
 # default's, and other instruction counts.
 SET_FRAMES=(425 875)

@@ -20,7 +20,8 @@ static scn_file fz_file;
 static rt_scene fz_scene;
 static uint32_t fz_pixels[FZ_W * FZ_H];
 static uint8_t fz_traced[FZ_W * FZ_H];
-static rt_sample fz_work[2 * 8 + 17 * 17];  /* adaptive working storage: checked against the size asked */
+static rt_sample
+    fz_work[2 * 8 + 17 * 17]; /* adaptive working storage: checked against the size asked */
 static FILE *fz_null;
 
 /* A broken promise of the code under test: report it and stop, so libFuzzer keeps the input. */

@@ -3,7 +3,7 @@
 # only the scene's effects), prints the code size of each, and checks that each renders exactly
 # what `rt-fixed render --scene` renders. Usage: tests/scene_programs.sh [--check] [--arm] [SCENE...]
 # Expects `make all`. With --check, exits non-zero when a compiled scene's frame differs.
-# With --arm (expects `make arm`), also links the fixed ARM926 image (src/intro.c) around each
+# With --arm (expects `make arm`), also links the fixed ARM926 image (src/app/intro.c) around each
 # scene and prints its code + read-only data + initialised data, the figure the 64 kB limit
 # applies to.
 set -u
@@ -28,8 +28,8 @@ CC=${CC:-gcc}
 CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp-contract=off -fno-strict-aliasing -O2"
 CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
 [ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
-INC="-Ifixed -Isrc -isystem $B/deps/libfixmath/libfixmath"
-CORE="fixed/fx.c src/trace.c src/shapes.c src/scene.c src/render.c src/subsample.c src/noise.c src/texture.c src/scn.c"
+INC="-Ifixed -Isrc/core -Isrc/scene -Isrc/app -isystem $B/deps/libfixmath/libfixmath"
+CORE="fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c src/core/render.c src/core/subsample.c src/core/noise.c src/core/texture.c src/scene/scn.c"
 LIB=$B/obj/fixed/libfixmath.a
 
 # Builds program $1 from generated scene source $2 and effects header $3.
@@ -62,7 +62,7 @@ build_arm() {
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/intro.o" "$AO/src/knobs.o" "$AO/platform/arm/arm.o" \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/app/intro.o" "$AO/src/scene/knobs.o" "$AO/platform/arm/arm.o" \
     "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
 }
 arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }

@@ -11,7 +11,8 @@
 #include "real.h"
 
 #if !REAL_FIXED || !FX_COUNT_EVENTS
-#error "test_format checks the fixed-point formats: build it with -DREAL_FIXED=1 -DFX_COUNT_EVENTS=1"
+#error \
+    "test_format checks the fixed-point formats: build it with -DREAL_FIXED=1 -DFX_COUNT_EVENTS=1"
 #endif
 
 /* One step of unit, and conversions to double. */
@@ -40,7 +41,7 @@ static unit d2u(double x) { return (unit)llround(x / lsb_u); }
 #endif
 /* Lengths from d3_norm: within 2 Q16.16 steps plus |v| 2^-(FX_UNIT_FRAC - 1), i.e. 2^-29 or
  * 2^-15 relative (measured: 0.41 of that for Q2.30, 0.65 for Q16.16). */
-#define TOL_LEN(len) (2.0 / 65536.0 + (len) * 2.0 * lsb_u)
+#define TOL_LEN(len) (2.0 / 65536.0 + (len)*2.0 * lsb_u)
 
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
 static uint32_t rng32(void)
@@ -185,13 +186,15 @@ static void test_rays(void **state)
         if (r2d(s) < 0.05)
             continue;
         dir3 u = d3_cross(r, f, 0);
-        int fov = 10 + (int)(rng32() % 111), h = 1 + (int)(rng32() % 4096), wd = 1 + (int)(rng32() % 4096);
+        int fov = 10 + (int)(rng32() % 111), h = 1 + (int)(rng32() % 4096),
+            wd = 1 + (int)(rng32() % 4096);
         unit sn, cs;
         u_sincos_deg(r_shr(r_from_int(fov), 1), &sn, &cs);
         ustep step = u_tan_step(sn, cs, h);
         double stepd = step / 1073741824.0; /* ustep is Q2.30 in both fixed formats */
         for (int k = 0; k < 50; k++) {
-            int ia = 2 * (int)(rng32() % (uint32_t)wd) + 1 - wd, ib = h - 2 * (int)(rng32() % (uint32_t)h) - 1;
+            int ia = 2 * (int)(rng32() % (uint32_t)wd) + 1 - wd,
+                ib = h - 2 * (int)(rng32() % (uint32_t)h) - 1;
             dir3 d = d3_ray(f, r, u, step, ia, ib);
             double a = stepd * ia, b = stepd * ib, v[3];
             v[0] = u2d(f.x) + u2d(r.x) * a + u2d(u.x) * b;

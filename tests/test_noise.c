@@ -25,11 +25,10 @@ static real from_d(double x) { return (real)x; }
 #define FBM_TOL 2e-4
 #endif
 
-/* The gradient set of src/noise.c (twelve cube edges, four repeated). */
+/* The gradient set of src/core/noise.c (twelve cube edges, four repeated). */
 static const int grad[16][3] = {
-    {1, 1, 0},  {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
-    {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
-    {1, 1, 0},  {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
 };
 
 static double o_dot(int32_t i, int32_t j, int32_t k, double x, double y, double z)
@@ -38,15 +37,9 @@ static double o_dot(int32_t i, int32_t j, int32_t k, double x, double y, double 
     return g[0] * x + g[1] * y + g[2] * z;
 }
 
-static double o_fade(double t)
-{
-    return t * t * t * (t * (t * 6 - 15) + 10);
-}
+static double o_fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 
-static double o_lerp(double a, double b, double t)
-{
-    return a + (b - a) * t;
-}
+static double o_lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 static double o_noise(double px, double py, double pz)
 {
@@ -159,8 +152,8 @@ static void test_fbm_vs_double(void **state)
         double got = to_d(rt_fbm(p, oct));
         double err = fabs(got - want);
         if (err > FBM_TOL)
-            fail_msg("fbm(%g, %g, %g; %d) = %g, double gives %g", to_d(p.x), to_d(p.y),
-                     to_d(p.z), oct, got, want);
+            fail_msg("fbm(%g, %g, %g; %d) = %g, double gives %g", to_d(p.x), to_d(p.y), to_d(p.z),
+                     oct, got, want);
         worst = err > worst ? err : worst;
     }
     print_message("fbm: 20000 points, 1-8 octaves, worst error %.3g\n", worst);

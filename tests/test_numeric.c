@@ -222,8 +222,9 @@ __attribute__((format(printf, 5, 6))) static void check_w(const char *op, double
 }
 
 /* An integer result (or any plain number). */
-__attribute__((format(printf, 5, 6))) static void
-check_i(const char *op, double expected, double got, double tol, const char *fmt, ...)
+__attribute__((format(printf, 5, 6))) static void check_i(const char *op, double expected,
+                                                          double got, double tol, const char *fmt,
+                                                          ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -652,16 +653,16 @@ static void test_saturation(void **state)
         unsigned long overflows, domains;
     } cases[16];
     int n = 0;
-#define SAT_CASE(expr, want_)                                                                      \
-    do {                                                                                           \
-        assert_true(n < (int)(sizeof cases / sizeof cases[0]));                                    \
-        fx_events_reset();                                                                         \
-        cases[n].got = (expr);                                                                     \
-        cases[n].what = #expr;                                                                     \
-        cases[n].want = (want_);                                                                   \
-        cases[n].overflows = fx_event_count[FX_EV_OVERFLOW];                                       \
-        cases[n].domains = fx_event_count[FX_EV_DOMAIN];                                           \
-        n++;                                                                                       \
+#define SAT_CASE(expr, want_) \
+    do { \
+        assert_true(n < (int)(sizeof cases / sizeof cases[0])); \
+        fx_events_reset(); \
+        cases[n].got = (expr); \
+        cases[n].what = #expr; \
+        cases[n].want = (want_); \
+        cases[n].overflows = fx_event_count[FX_EV_OVERFLOW]; \
+        cases[n].domains = fx_event_count[FX_EV_DOMAIN]; \
+        n++; \
     } while (0)
     SAT_CASE(r_add(R_MAX, R_ONE), R_MAX);
     SAT_CASE(r_add(-R_MAX, -R_MAX), -R_MAX);
@@ -1099,8 +1100,8 @@ static void test_fixed_internals(void **state)
                                      65536,       65537};
     for (int k = 0; k < (int)(sizeof roots / sizeof roots[0]) + 64; k++) {
         uint64_t r = k < (int)(sizeof roots / sizeof roots[0])
-                         ? roots[k]
-                         : ((uint64_t)1 << ((k - 10) / 2)) + ((k & 1) ? 1 : (uint64_t)-1);
+            ? roots[k]
+            : ((uint64_t)1 << ((k - 10) / 2)) + ((k & 1) ? 1 : (uint64_t)-1);
         if (r > 0xFFFFFFFFu || r == 0)
             continue;
         uint64_t sq = r * r;

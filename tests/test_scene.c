@@ -49,7 +49,8 @@ static void numbers_round_to_q16(void **state)
 static const scn_desc *fov_track(const char *keys)
 {
     static char text[2048];
-    snprintf(text, sizeof text, HEAD "sphere s material m center 0 0 0 radius 1\nduration 20\n%s", keys);
+    snprintf(text, sizeof text, HEAD "sphere s material m center 0 0 0 radius 1\nduration 20\n%s",
+             keys);
     return parse_ok(text);
 }
 
@@ -84,8 +85,10 @@ static void timeline_kinds_at_keys_between_and_past_the_ends(void **state)
     /* smooth: 3u^2 - 2u^3, symmetric about the middle, at rest at both keys */
     assert_int_equal(fov_at(d, 4000), 50 * SCN_ONE);
     int32_t q1 = fov_at(d, 3500), q3 = fov_at(d, 4500); /* u = 1/4: 0.15625 */
-    assert_true(q1 >= 56 * SCN_ONE + SCN_ONE * 7 / 8 - 2 && q1 <= 56 * SCN_ONE + SCN_ONE * 7 / 8 + 2);
-    assert_true(q1 - 50 * SCN_ONE >= 50 * SCN_ONE - q3 - 2 && q1 - 50 * SCN_ONE <= 50 * SCN_ONE - q3 + 2);
+    assert_true(q1 >= 56 * SCN_ONE + SCN_ONE * 7 / 8 - 2 &&
+                q1 <= 56 * SCN_ONE + SCN_ONE * 7 / 8 + 2);
+    assert_true(q1 - 50 * SCN_ONE >= 50 * SCN_ONE - q3 - 2 &&
+                q1 - 50 * SCN_ONE <= 50 * SCN_ONE - q3 + 2);
     assert_true(60 * SCN_ONE - fov_at(d, 3010) < SCN_ONE / 100); /* barely moved after 10 ms */
     /* step: holds until the next key */
     assert_int_equal(fov_at(d, 5001), 40 * SCN_ONE);
@@ -111,8 +114,9 @@ static void spline_passes_through_keys_and_keeps_lines_straight(void **state)
     int32_t before = fov_at(d, 1000) - fov_at(d, 990), after = fov_at(d, 1010) - fov_at(d, 1000);
     assert_true(before - after < SCN_ONE / 50 && after - before < SCN_ONE / 50);
     /* Overshoot is clamped into the parameter's range (fov 10..120). */
-    d = fov_track("key camera.fov 0 spline 10\nkey camera.fov 1 spline 10\n"
-                  "key camera.fov 2 spline 120\nkey camera.fov 3 spline 120\nkey camera.fov 4 spline 10\n");
+    d = fov_track(
+        "key camera.fov 0 spline 10\nkey camera.fov 1 spline 10\n"
+        "key camera.fov 2 spline 120\nkey camera.fov 3 spline 120\nkey camera.fov 4 spline 10\n");
     for (int32_t ms = 0; ms <= 4000; ms += 50) {
         int32_t v = fov_at(d, ms);
         assert_true(v >= 10 * SCN_ONE && v <= 120 * SCN_ONE);
@@ -122,13 +126,14 @@ static void spline_passes_through_keys_and_keeps_lines_straight(void **state)
 static void eval_applies_tracks_of_every_owner(void **state)
 {
     (void)state;
-    const scn_desc *d = parse_ok(HEAD "duration 10\nlight l pos 0 5 0 color 1 1 1\n"
-                                      "sphere s material m center 0 1 0 radius 1\n"
-                                      "key s.center 0 linear 0 1 0\nkey s.center 10 linear 10 1 0\n"
-                                      "key m.reflect 0 linear 0\nkey m.reflect 10 linear 1\n"
-                                      "key l.color 0 step 1 0 0\n"
-                                      "key scene.background 0 linear 0 0 0\nkey scene.background 10 linear 1 1 1\n"
-                                      "key camera.eye 0 linear 0 2 8\nkey camera.eye 10 linear 0 4 8\n");
+    const scn_desc *d =
+        parse_ok(HEAD "duration 10\nlight l pos 0 5 0 color 1 1 1\n"
+                      "sphere s material m center 0 1 0 radius 1\n"
+                      "key s.center 0 linear 0 1 0\nkey s.center 10 linear 10 1 0\n"
+                      "key m.reflect 0 linear 0\nkey m.reflect 10 linear 1\n"
+                      "key l.color 0 step 1 0 0\n"
+                      "key scene.background 0 linear 0 0 0\nkey scene.background 10 linear 1 1 1\n"
+                      "key camera.eye 0 linear 0 2 8\nkey camera.eye 10 linear 0 4 8\n");
     static rt_scene s;
     scn_eval(d, 5000, &s);
     assert_true(r_abs(r_sub(s.objects[0].center.x, R(5))) < R(0.001));
@@ -153,7 +158,8 @@ static void effects_derived_from_materials_and_geometry(void **state)
 {
     (void)state;
     /* one object alone shadows nothing; no specular, no secondary rays, no texture */
-    const rt_scene *s = eval0(HEAD "light l pos 5 5 5 color 1 1 1\nsphere a material m center 0 0 0 radius 1\n");
+    const rt_scene *s =
+        eval0(HEAD "light l pos 5 5 5 color 1 1 1\nsphere a material m center 0 0 0 radius 1\n");
     assert_int_equal(s->effects, 0);
     assert_int_equal(s->reach_depth, 0);
     /* two spheres: shadows, by each other only */
@@ -186,15 +192,18 @@ static void effects_derived_from_materials_and_geometry(void **state)
               "sphere a material m center 0 0 0 radius 1\n");
     assert_int_equal(s->effects, RT_FX_TEXTURE);
     s = eval0("camera eye 0 2 8 at 0 1 0\nlight l pos 5 5 5 color 1 1 1\n"
-              "material m specular 0.5 texture wood scale 2\nsphere a material m center 0 0 0 radius 1\n");
+              "material m specular 0.5 texture wood scale 2\nsphere a material m center 0 0 0 "
+              "radius 1\n");
     assert_int_equal(s->effects, RT_FX_SPECULAR | RT_FX_TEXTURE | RT_FX_NOISE);
     /* reachable recursion depth */
-    s = eval0("camera eye 0 2 8 at 0 1 0\nmaterial m reflect 0.5\nmaterial n\n"
-              "sphere a material m center 0 0 0 radius 1\nsphere b material n center 3 0 0 radius 1\n");
+    s = eval0(
+        "camera eye 0 2 8 at 0 1 0\nmaterial m reflect 0.5\nmaterial n\n"
+        "sphere a material m center 0 0 0 radius 1\nsphere b material n center 3 0 0 radius 1\n");
     assert_int_equal(s->effects, RT_FX_REFLECT);
     assert_int_equal(s->reach_depth, 1); /* one convex mirror never sees itself */
-    s = eval0("camera eye 0 2 8 at 0 1 0\nmaterial m reflect 0.5\n"
-              "sphere a material m center 0 0 0 radius 1\nsphere b material m center 3 0 0 radius 1\n");
+    s = eval0(
+        "camera eye 0 2 8 at 0 1 0\nmaterial m reflect 0.5\n"
+        "sphere a material m center 0 0 0 radius 1\nsphere b material m center 3 0 0 radius 1\n");
     assert_int_equal(s->reach_depth, RT_MAX_DEPTH); /* two mirrors face each other */
     s = eval0("camera eye 0 2 8 at 0 1 0\nmaterial g transmit 0.9 ior 1.5\n"
               "sphere a material g center 0 0 0 radius 1\n");
@@ -211,16 +220,25 @@ static void unused_effects_cast_no_rays(void **state)
     (void)state;
     enum { W = 48, H = 36 };
     static uint32_t pixels[W * H];
-    struct { const char *text; int shadow, reflect, refract; } cases[] = {
-        {HEAD "light l pos 5 5 5 color 1 1 1\nsphere a material m center 0 1 0 radius 1\n", 0, 0, 0},
+    struct {
+        const char *text;
+        int shadow, reflect, refract;
+    } cases[] = {
+        {HEAD "light l pos 5 5 5 color 1 1 1\nsphere a material m center 0 1 0 radius 1\n", 0, 0,
+         0},
         {HEAD "light l pos 5 5 5 color 1 1 1\nplane f material m normal 0 1 0 offset 0\n"
-              "sphere a material m center 0 1 0 radius 1\n", 1, 0, 0}, /* the ball's shadow */
+              "sphere a material m center 0 1 0 radius 1\n",
+         1, 0, 0}, /* the ball's shadow */
         {HEAD "light l pos 5 5 5 color 1 1 1\nsphere a material m center 0 1 0 radius 1\n"
-              "sphere b material m center 2.5 1 0 radius 1\n", 1, 0, 0},
+              "sphere b material m center 2.5 1 0 radius 1\n",
+         1, 0, 0},
         {"camera eye 0 2 8 at 0 1 0\nlight l pos 5 5 5 color 1 1 1\nmaterial m reflect 0.5\n"
-         "sphere a material m center 0 1 0 radius 1\n", 0, 1, 0},
-        {"camera eye 0 2 8 at 0 1 0\nlight l pos 5 5 5 color 1 1 1\nmaterial g transmit 0.85 reflect 0.1 ior 1.5\n"
-         "sphere a material g center 0 1 0 radius 1\n", 1, 1, 1},
+         "sphere a material m center 0 1 0 radius 1\n",
+         0, 1, 0},
+        {"camera eye 0 2 8 at 0 1 0\nlight l pos 5 5 5 color 1 1 1\nmaterial g transmit 0.85 "
+         "reflect 0.1 ior 1.5\n"
+         "sphere a material g center 0 1 0 radius 1\n",
+         1, 1, 1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         static rt_scene s;
@@ -248,7 +266,7 @@ static void unused_effects_cast_no_rays(void **state)
 static void example_scenes_effects_within_their_union(void **state)
 {
     (void)state;
-    static const char *const files[] = {"scenes/intro.scene", "scenes/demo.scene",
+    static const char *const files[] = {"scenes/intro.scene",   "scenes/demo.scene",
                                         "scenes/diffuse.scene", "scenes/shadows.scene",
                                         "scenes/mirrors.scene", "scenes/glass.scene",
                                         "scenes/textures.scene"};

@@ -21,15 +21,9 @@ static real from_d(double x) { return (real)x; }
 #define T_TOL 1e-4
 #endif
 
-static vec3 vd(double x, double y, double z)
-{
-    return v3(from_d(x), from_d(y), from_d(z));
-}
+static vec3 vd(double x, double y, double z) { return v3(from_d(x), from_d(y), from_d(z)); }
 
-static dir3 dirv(double x, double y, double z)
-{
-    return d3_norm(vd(x, y, z), 0);
-}
+static dir3 dirv(double x, double y, double z) { return d3_norm(vd(x, y, z), 0); }
 
 static rt_object sphere(double x, double y, double z, double r)
 {
@@ -234,7 +228,8 @@ static void test_shadow_cull(void **state)
             /* q off the centre at right angles to the light: the segment grazes the sphere,
              * passing a few thousandths outside or inside it, where the rejection starts */
             double ax = cx - lx, ay = cy - ly, az = cz - lz;
-            double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
+            double a2 = ax * ax + ay * ay + az * az + 1e-30,
+                   ua = (ux * ax + uy * ay + uz * az) / a2;
             ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
             rq = r + rnd(-0.002, 0.012) + r * rnd(0, 0.002);
         }
@@ -250,8 +245,9 @@ static void test_shadow_cull(void **state)
         real dist;
         dir3 l = d3_norm(to_light, &dist);
         /* a surface normal facing the light, tilted at random */
-        dir3 nrm = d3_norm(vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9),
-                              to_d(l.z) + rnd(-0.9, 0.9)), 0);
+        dir3 nrm = d3_norm(
+            vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9), to_d(l.z) + rnd(-0.9, 0.9)),
+            0);
         if (d3_dot(nrm, l) <= 0)
             continue;
         vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
@@ -334,8 +330,8 @@ static void test_primary_cull(void **state)
         int id1 = rt_nearest(&s, s.camera.eye, d, R_T_MAX, &t1);
         int id2 = rt_nearest_primary(&s, d, &t2);
         if (id1 != id2 || t1 != t2)
-            fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1,
-                     to_d(t1), id2, to_d(t2), i);
+            fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1, to_d(t1),
+                     id2, to_d(t2), i);
         hits += id1 >= 0 && id1 < 3;
         real tca = v3_dot_d_in(s.eye_l[i % 3], d);
         wide k = s.eye_cull[i % 3];
@@ -363,10 +359,13 @@ static void test_sample_record(void **state)
     s.background = vd(0.1, 0.2, 0.3);
     s.ambient = vd(0.2, 0.2, 0.2);
     s.depth = 3;
-    s.materials[0] = (rt_material){.diffuse = vd(0.8, 0.2, 0.2), .ambient = R_ONE,
-                                   .specular = R(0.9), .shininess = 8, .ior = R_ONE};
-    s.materials[1] = (rt_material){.diffuse = vd(0.1, 0.1, 0.1), .ambient = R_ONE,
-                                   .reflect = R(0.8), .ior = R_ONE};
+    s.materials[0] = (rt_material){.diffuse = vd(0.8, 0.2, 0.2),
+                                   .ambient = R_ONE,
+                                   .specular = R(0.9),
+                                   .shininess = 8,
+                                   .ior = R_ONE};
+    s.materials[1] = (rt_material){
+        .diffuse = vd(0.1, 0.1, 0.1), .ambient = R_ONE, .reflect = R(0.8), .ior = R_ONE};
     s.nmaterials = 2;
     s.objects[0] = sphere(0, 0, -10, 2);
     s.objects[0].material = 0;
@@ -428,11 +427,11 @@ static void test_far_mirror_chain(void **state)
     s.background = vd(0.1, 0.2, 0.3);
     s.ambient = vd(0.2, 0.2, 0.2);
     s.depth = RT_MAX_DEPTH;
-    s.materials[0] = (rt_material){.diffuse = vd(0.2, 0.2, 0.2), .ambient = R_ONE,
-                                   .reflect = R(0.9), .ior = R_ONE};
+    s.materials[0] = (rt_material){
+        .diffuse = vd(0.2, 0.2, 0.2), .ambient = R_ONE, .reflect = R(0.9), .ior = R_ONE};
     s.materials[1] = (rt_material){.diffuse = vd(0.8, 0.2, 0.2), .ambient = R_ONE, .ior = R_ONE};
     s.nmaterials = 2;
-    s.objects[0] = plane(0, 1, 0, 0);    /* floor */
+    s.objects[0] = plane(0, 1, 0, 0);      /* floor */
     s.objects[1] = plane(0, -1, 0, -4000); /* ceiling at y = 4000 */
     s.objects[2] = sphere(-4000, 100, -4000, 10);
     s.objects[2].material = 1;
@@ -458,12 +457,9 @@ static void test_far_mirror_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sphere_cases),
-        cmocka_unit_test(test_plane_cases),
-        cmocka_unit_test(test_sphere_random),
-        cmocka_unit_test(test_shadow_cull),
-        cmocka_unit_test(test_primary_cull),
-        cmocka_unit_test(test_sample_record),
+        cmocka_unit_test(test_sphere_cases),     cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random),    cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -100,7 +100,10 @@ static void dd(dir3 d, double *o)
     double l = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
     o[0] /= l, o[1] /= l, o[2] /= l;
 }
-static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 static double dist3(const double *a, const double *b)
 {
     double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
@@ -124,7 +127,8 @@ static vec3 hit_points(vec3 org, dir3 d, real t, const double *o, const double *
 static void reset_events(void) { fx_events_reset(); }
 static void no_events(const char *what)
 {
-    if (fx_event_count[FX_EV_OVERFLOW] || fx_event_count[FX_EV_DOMAIN] || fx_event_count[FX_EV_NONFINITE])
+    if (fx_event_count[FX_EV_OVERFLOW] || fx_event_count[FX_EV_DOMAIN] ||
+        fx_event_count[FX_EV_NONFINITE])
         fail_msg("%s: numeric events: overflow %lu domain %lu nonfinite %lu", what,
                  fx_event_count[FX_EV_OVERFLOW], fx_event_count[FX_EV_DOMAIN],
                  fx_event_count[FX_EV_NONFINITE]);
@@ -210,8 +214,9 @@ static void test_sphere_properties(void **state)
         double len = sqrt(dot(l, l));
         if (got != want) {
             double gap = fabs(perp - r);
-            note(&w_band, gap / BAND(len), "|perp - r| %.3g at distance %.6g (r %.6g): this build %s",
-                 gap, len, r, got ? "hits" : "misses");
+            note(&w_band, gap / BAND(len),
+                 "|perp - r| %.3g at distance %.6g (r %.6g): this build %s", gap, len, r,
+                 got ? "hits" : "misses");
             if (gap > BAND(len) && fabs(t_true - to_d(R_T_MAX)) > BAND_T)
                 fail_msg("sphere: hit/miss disagree %.3g from tangency (band %.3g): o (%.9g %.9g "
                          "%.9g) c (%.9g %.9g %.9g) r %.9g d (%.12g %.12g %.12g)",
@@ -236,7 +241,8 @@ static void test_sphere_properties(void **state)
         double dp = dist3(pd, pt);
         if (thc >= r / 64) {
             double ab = ALONG(mag, perp, thc);
-            note(&w_along, dp / ab, "%.3g from the exact hit (bound %.3g), r %.6g t %.6g", dp, ab, r, t_true);
+            note(&w_along, dp / ab, "%.3g from the exact hit (bound %.3g), r %.6g t %.6g", dp, ab,
+                 r, t_true);
             if (dp > ab)
                 fail_msg("sphere: hit point %.3g from the exact one (bound %g): r %.9g t %.9g", dp,
                          ab, r, t_true);
@@ -266,7 +272,8 @@ static void test_sphere_properties(void **state)
                     for (int m = 0; m < 3; m++)
                         v[m] = v[m] / vl + nd[m] * 1e-6;
                 }
-                dir3 sd = d3_norm(v3(from_d(v[0] * 1000), from_d(v[1] * 1000), from_d(v[2] * 1000)), 0);
+                dir3 sd =
+                    d3_norm(v3(from_d(v[0] * 1000), from_d(v[1] * 1000), from_d(v[2] * 1000)), 0);
                 if (d3_dot(sd, n) <= 0)
                     sd = d3_neg(sd);
                 if (d3_dot(sd, n) <= 0)
@@ -280,7 +287,8 @@ static void test_sphere_properties(void **state)
                         continue;
                     }
                     fail_msg("sphere: ray from its own offset hit point meets it again at t %.6g: "
-                             "r %.9g, hit at distance %.9g", to_d(ts), r, t_true);
+                             "r %.9g, hit at distance %.9g",
+                             to_d(ts), r, t_true);
                     self++;
                 }
             }
@@ -296,9 +304,10 @@ static void test_sphere_properties(void **state)
                   w_along.what);
     print_message("  worst normal error / bound: %.3g: %s\n", w_norm.v, w_norm.what);
     if (self_far)
-        print_message("  float: %ld rays from hit points beyond %g units (nearest %.6g) met their own "
-                      "sphere again: the float hit point's error there reaches the offset\n",
-                      self_far, SELF_SAFE, self_far_min);
+        print_message(
+            "  float: %ld rays from hit points beyond %g units (nearest %.6g) met their own "
+            "sphere again: the float hit point's error there reaches the offset\n",
+            self_far, SELF_SAFE, self_far_min);
     assert_int_equal(self, 0);
     assert_true(disagree * 1000 < n_rays * DISAGREE_PER_MILLE);
     no_events("sphere properties");
@@ -318,7 +327,9 @@ static void test_plane_properties(void **state)
         if (i % 4 == 0) /* axis-aligned or nearly so, as floors and walls are */
             a[i / 4 % 3] += 1000 * (1 + (i % 3));
         double scale = exp2(rnd(-6, 12));
-        rt_object pl = {.kind = RT_PLANE, .axis = v3(from_d(a[0] * scale), from_d(a[1] * scale), from_d(a[2] * scale)),
+        rt_object pl = {.kind = RT_PLANE,
+                        .axis =
+                            v3(from_d(a[0] * scale), from_d(a[1] * scale), from_d(a[2] * scale)),
                         .offset = from_d(rnd(-4096, 4096))};
         if (v3_is_zero(pl.axis))
             continue;
@@ -366,10 +377,11 @@ static void test_plane_properties(void **state)
                      PLANE_PERP, t_true, den);
         /* along the ray the error is the perpendicular one over the cosine */
         double dp = dist3(pd, pt), ab = (PLANE_PERP + 1e-9 * t_true) / fabs(den);
-        note(&w_along, dp * fabs(den), "%.3g from the exact hit at t %.6g, cosine %.3g", dp, t_true, den);
+        note(&w_along, dp * fabs(den), "%.3g from the exact hit at t %.6g, cosine %.3g", dp, t_true,
+             den);
         if (dp > ab)
-            fail_msg("plane: hit point %.3g from the exact one (bound %.3g): t %.9g cosine %.9g", dp,
-                     ab, t_true, den);
+            fail_msg("plane: hit point %.3g from the exact one (bound %.3g): t %.9g cosine %.9g",
+                     dp, ab, t_true, den);
         /* from the offset hit point, rays into the side the ray came from never meet it */
         dir3 nn = den < 0 ? pl.normal : d3_neg(pl.normal);
         vec3 po = v3_along(p, nn, R_EPS_OFFSET);
@@ -390,13 +402,16 @@ static void test_plane_properties(void **state)
         }
     }
     print_message("plane properties: %ld rays, %ld hits, %ld hit/miss disagreements, all at the "
-                  "parallel limit or the ray's ends\n", n_rays, hits, disagree);
+                  "parallel limit or the ray's ends\n",
+                  n_rays, hits, disagree);
     print_message("  worst distance off the plane: %.3g (bound %g): %s\n", w_perp.v, PLANE_PERP,
                   w_perp.what);
     print_message("  worst error along the ray x cosine: %.3g: %s\n", w_along.v, w_along.what);
     if (self_far)
-        print_message("  float: %ld rays from hit points beyond %g units (nearest %.6g) met their own "
-                      "plane again\n", self_far, SELF_SAFE, self_far_min);
+        print_message(
+            "  float: %ld rays from hit points beyond %g units (nearest %.6g) met their own "
+            "plane again\n",
+            self_far, SELF_SAFE, self_far_min);
     assert_true(disagree * 1000 < n_rays);
     no_events("plane properties");
 }
@@ -455,7 +470,8 @@ static void test_normalise_extremes(void **state)
     vec3 tiny = v3(R_LSB, 0, 0), huge = v3(R_MAX, R_MAX, -R_MAX);
     dir3 t = d3_norm(tiny, 0), h = d3_norm(huge, 0);
     assert_true(fabs(u_to_d(t.x) - 1) < 1e-6);
-    assert_true(fabs(u_to_d(h.x) - 1 / sqrt(3.0)) < 1e-6 && fabs(u_to_d(h.z) + 1 / sqrt(3.0)) < 1e-6);
+    assert_true(fabs(u_to_d(h.x) - 1 / sqrt(3.0)) < 1e-6 &&
+                fabs(u_to_d(h.z) + 1 / sqrt(3.0)) < 1e-6);
     print_message("normalise: worst direction error %.3g at %s; worst length error %.3g at %s\n",
                   worst_dir, wd, worst_len, wl);
     no_events("normalise");

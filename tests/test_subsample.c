@@ -17,10 +17,7 @@ static real from_d(double x) { return (real)llround(x * 65536.0); }
 static real from_d(double x) { return (real)x; }
 #endif
 
-static vec3 vd(double x, double y, double z)
-{
-    return v3(from_d(x), from_d(y), from_d(z));
-}
+static vec3 vd(double x, double y, double z) { return v3(from_d(x), from_d(y), from_d(z)); }
 
 /* ---- split criteria on constructed corner records ------------------------------------------ */
 
@@ -126,8 +123,8 @@ static void test_interpolate_gradient(void **state)
 {
     (void)state;
     static uint32_t px[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
-    const int sizes[][2] = {{1, 1}, {2, 2}, {4, 4}, {8, 8}, {16, 16}, {7, 3}, {5, 16}, {16, 1},
-                            {0, 4}, {3, 0}, {13, 11}};
+    const int sizes[][2] = {{1, 1},  {2, 2},  {4, 4}, {8, 8}, {16, 16}, {7, 3},
+                            {5, 16}, {16, 1}, {0, 4}, {3, 0}, {13, 11}};
     int worst = 0;
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
         int w = sizes[n][0], h = sizes[n][1];
@@ -163,7 +160,7 @@ static void test_interpolate_gradient(void **state)
         px[i] = 0xDEADBEEF;
     rt_interpolate(px, RT_GRID_MAX + 1, 8, 8, 8, 8, vd(0, 0, 0), vd(1, 1, 1), vd(0, 0, 0),
                    vd(1, 1, 1));
-    assert_int_equal(px[8], 0xDEADBEEF);                    /* column 8 of row 0 */
+    assert_int_equal(px[8], 0xDEADBEEF);                     /* column 8 of row 0 */
     assert_int_equal(px[8 * (RT_GRID_MAX + 1)], 0xDEADBEEF); /* row 8 */
     assert_int_equal(px[7] & 0xFF, 223);                     /* 7/8 of the way: 223.1 */
     print_message("interpolation: worst error %d level(s)\n", worst);
@@ -225,15 +222,14 @@ static void one_sphere_scene(rt_scene *s, double x, double y, double r)
  * neighbouring pixels whose full samples differ for `reason`, checks that the adaptive render
  * traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
  * the full render's colours there. Returns the number of such pairs. */
-static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
-                      const char *name)
+static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
 {
     rt_scene_prepare(s);
     rt_view v;
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
-    const rt_params pa = {.depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8,
-                          .threshold = RT_DEFAULT_THRESHOLD};
+    const rt_params pa = {
+        .depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = RT_DEFAULT_THRESHOLD};
     rt_stats st = {0}, sa = {0};
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
@@ -249,8 +245,7 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
                 int x2 = x + (d == 0), y2 = y + (d == 1);
                 if (x2 >= W || y2 >= H)
                     continue;
-                const rt_sample *k[4] = {&full[y][x], &full[y][x], &full[y2][x2],
-                                         &full[y2][x2]};
+                const rt_sample *k[4] = {&full[y][x], &full[y][x], &full[y2][x2], &full[y2][x2]};
                 enum rt_split_reason why = rt_corners_differ(k, 255);
                 if (why == RT_SPLIT_NONE)
                     continue;
@@ -313,8 +308,9 @@ static void test_reflected_outline(void **state)
     (void)state;
     static rt_scene s;
     scene_base(&s);
-    int mf = add_material(&s, (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1),
-                                            .reflect = from_d(0.7)});
+    int mf = add_material(
+        &s,
+        (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1), .reflect = from_d(0.7)});
     int ms = add_material(&s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
     add_floor(&s, mf);
     add_sphere(&s, ms, 0, 3.5, -3, 1.0);
@@ -334,8 +330,8 @@ static void test_sizes(void **state)
     static rt_scene s;
     one_sphere_scene(&s, 0, 0, 2.0);
     rt_scene_prepare(&s);
-    const int sizes[][2] = {{1, 1}, {1, 7}, {7, 1}, {2, 2}, {9, 9}, {17, 17}, {13, 10},
-                            {W, H}, {W - 1, H - 3}, {33, 65}};
+    const int sizes[][2] = {{1, 1},   {1, 7},   {7, 1}, {2, 2},         {9, 9},
+                            {17, 17}, {13, 10}, {W, H}, {W - 1, H - 3}, {33, 65}};
     const int grids[] = {2, 4, 8, 16};
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
         for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
@@ -343,7 +339,9 @@ static void test_sizes(void **state)
             rt_view v;
             rt_view_init(&v, &s.camera, w, h);
             const rt_params pf = {.depth = 2, .mode = RT_MODE_FULL};
-            const rt_params pa = {.depth = 2, .mode = RT_MODE_ADAPTIVE, .grid = grid,
+            const rt_params pa = {.depth = 2,
+                                  .mode = RT_MODE_ADAPTIVE,
+                                  .grid = grid,
                                   .threshold = RT_DEFAULT_THRESHOLD};
             rt_stats st = {0};
             assert_true(rt_render_work_size(&pa, w) <= sizeof work);
@@ -399,8 +397,8 @@ static void test_bands(void **state)
         for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
             for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
                 int w = sizes[n][0], h = sizes[n][1];
-                const rt_params p = {.depth = 2, .mode = mode, .grid = grids[g],
-                                     .threshold = RT_DEFAULT_THRESHOLD};
+                const rt_params p = {
+                    .depth = 2, .mode = mode, .grid = grids[g], .threshold = RT_DEFAULT_THRESHOLD};
                 rt_view v;
                 rt_view_init(&v, &s.camera, w, h);
                 rt_stats st = {0};
@@ -428,8 +426,9 @@ static void test_min_contrib(void **state)
     (void)state;
     static rt_scene s;
     scene_base(&s);
-    int mm = add_material(&s, (rt_material){.diffuse = vd(0.1, 0.1, 0.1), .ambient = from_d(1),
-                                            .reflect = from_d(0.5)});
+    int mm = add_material(
+        &s,
+        (rt_material){.diffuse = vd(0.1, 0.1, 0.1), .ambient = from_d(1), .reflect = from_d(0.5)});
     add_sphere(&s, mm, -1.2, 0, -8, 1.0);
     add_sphere(&s, mm, 1.2, 0, -8, 1.0);
     s.depth = 8;

@@ -29,9 +29,16 @@
 #define ARM_SYS_24MHZ (*(volatile uint32_t *)0x1000005cu)
 
 /* Semihosting operations (ARM's semihosting specification), trapped by `svc 0x123456`. */
-enum { ARM_SYS_OPEN = 0x01, ARM_SYS_CLOSE = 0x02, ARM_SYS_WRITE = 0x05, ARM_SYS_REMOVE = 0x0e,
-       ARM_SYS_RENAME = 0x0f, ARM_SYS_GET_CMDLINE = 0x15, ARM_SYS_EXIT_EXTENDED = 0x20 };
-#define ARM_OPEN_WB 5                   /* fopen mode "wb" */
+enum {
+    ARM_SYS_OPEN = 0x01,
+    ARM_SYS_CLOSE = 0x02,
+    ARM_SYS_WRITE = 0x05,
+    ARM_SYS_REMOVE = 0x0e,
+    ARM_SYS_RENAME = 0x0f,
+    ARM_SYS_GET_CMDLINE = 0x15,
+    ARM_SYS_EXIT_EXTENDED = 0x20
+};
+#define ARM_OPEN_WB 5                 /* fopen mode "wb" */
 #define ARM_EXIT_APPLICATION 0x20026u /* ADP_Stopped_ApplicationExit */
 
 /* From link.ld. */
@@ -41,7 +48,7 @@ extern uint32_t __stack_bottom[], __stack_top[];
 extern const char ARM_STACK_PAINT[];
 #define ARM_PAINT ((uint32_t)(uintptr_t)ARM_STACK_PAINT)
 
-static int arm_back;            /* framebuffer the next frame is drawn into */
+static int arm_back; /* framebuffer the next frame is drawn into */
 static int arm_display_on;
 
 static int arm_semi(uint32_t op, void *arg)
@@ -97,10 +104,7 @@ uint64_t plat_time_ns(void)
     return (high | t) * 125u / 3u;
 }
 
-static uint32_t *arm_buffer(int i)
-{
-    return __fb_start + (uint32_t)i * ARM_W * ARM_H;
-}
+static uint32_t *arm_buffer(int i) { return __fb_start + (uint32_t)i * ARM_W * ARM_H; }
 
 static void arm_show(const uint32_t *pixels)
 {
@@ -126,10 +130,7 @@ int plat_frame_acquire(plat_frame *f, int width, int height)
     return 0;
 }
 
-void plat_frame_release(plat_frame *f)
-{
-    f->pixels = 0;
-}
+void plat_frame_release(plat_frame *f) { f->pixels = 0; }
 
 /* Writes n bytes to a semihosting handle; 0 when all were written. */
 static int arm_write(int fd, const void *buf, uint32_t n)
@@ -256,8 +257,9 @@ static void arm_exit(int status)
 void arm_fault(uint32_t lr, uint32_t kind);
 void arm_fault(uint32_t lr, uint32_t kind)
 {
-    static const char *const names[8] = {"reset", "undefined instruction", "SVC", "prefetch abort",
-                                          "data abort", "reserved", "IRQ", "FIQ"};
+    static const char *const names[8] = {
+        "reset", "undefined instruction", "SVC", "prefetch abort", "data abort", "reserved", "IRQ",
+        "FIQ"};
     const char *s = "error: CPU exception: ";
     while (*s)
         arm_putc(*s++);

@@ -12,11 +12,12 @@
 
 static int cmp_usage(FILE *f)
 {
-    fprintf(f, "usage: rt-cmp A B [--diff D.png]\n"
-               "Compares two images of equal size (PNG or PPM) and prints one line:\n"
-               "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
-               "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
-               "more than 8).\n",
+    fprintf(f,
+            "usage: rt-cmp A B [--diff D.png]\n"
+            "Compares two images of equal size (PNG or PPM) and prints one line:\n"
+            "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
+            "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
+            "more than 8).\n",
             CMP_DIFF_GAIN);
     return f == stdout ? 0 : 2;
 }
@@ -45,8 +46,10 @@ int main(int argc, char **argv)
         }
     }
     if (npath != 2) {
-        fprintf(stderr, "rt-cmp: expected two images, got %d (usage: rt-cmp A B [--diff D.png]; "
-                "see rt-cmp --help)\n", npath);
+        fprintf(stderr,
+                "rt-cmp: expected two images, got %d (usage: rt-cmp A B [--diff D.png]; "
+                "see rt-cmp --help)\n",
+                npath);
         return 2;
     }
     char err[512];

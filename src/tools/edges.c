@@ -3,7 +3,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-
 #include "knobs.h"
 #include "rt.h"
 #include "scn_parse.h"

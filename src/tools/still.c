@@ -22,15 +22,19 @@ int main(int argc, char **argv)
     long w = argc == 4 ? still_arg(argv[2], 1, 4096) : -1;
     long h = argc == 4 ? still_arg(argv[3], 1, 4096) : -1;
     if (ms < 0 || w < 0 || h < 0) {
-        fprintf(stderr, "usage: %s TIME_MS WIDTH HEIGHT >frame.ppm  (TIME_MS in 0..%ld, sides "
-                "1..4096): one frame of the compiled-in scene, rendered as `render` does by default\n",
-                argv[0], (long)scn_compiled.duration_ms);
+        fprintf(
+            stderr,
+            "usage: %s TIME_MS WIDTH HEIGHT >frame.ppm  (TIME_MS in 0..%ld, sides "
+            "1..4096): one frame of the compiled-in scene, rendered as `render` does by default\n",
+            argv[0], (long)scn_compiled.duration_ms);
         return 2;
     }
     static rt_scene scene;
     scn_eval(&scn_compiled, (int32_t)ms, &scene);
-    rt_params p = {.depth = scene.depth, .min_contrib = RT_DEFAULT_MIN_CONTRIB,
-                   .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID,
+    rt_params p = {.depth = scene.depth,
+                   .min_contrib = RT_DEFAULT_MIN_CONTRIB,
+                   .mode = RT_MODE_ADAPTIVE,
+                   .grid = RT_DEFAULT_GRID,
                    .threshold = RT_DEFAULT_THRESHOLD};
     rt_view v;
     rt_view_init(&v, &scene.camera, (int)w, (int)h);

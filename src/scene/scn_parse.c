@@ -1,4 +1,4 @@
-/* scn_parse.c: the scene-file parser (integers only, so both builds read a file identically) and the C writer of scenec. */
+/* scn_parse.c: the scene-file parser: integers only, so both builds read a file identically. */
 #include "scn_parse.h"
 
 #include <errno.h>
@@ -171,7 +171,8 @@ static int ps_time(ps_state *ps, ps_tok t, const char *what, int32_t *ms)
     if (digits == 0 || s != e)
         return PS_FAIL(ps, t.s, "%s: '%.*s' is not a time in seconds", what, t.len, t.s);
     if (fd > 3)
-        return PS_FAIL(ps, t.s, "%s: '%.*s' has more than 3 decimals (times are in whole milliseconds)",
+        return PS_FAIL(ps, t.s,
+                       "%s: '%.*s' has more than 3 decimals (times are in whole milliseconds)",
                        what, t.len, t.s);
     for (; fd < 3; fd++)
         frac *= 10;
@@ -198,8 +199,8 @@ static int ps_values(ps_state *ps, ps_tok prop, int param, int32_t out[3])
             char lo[16], hi[16];
             scn_format_q16(pi->lo, lo);
             scn_format_q16(pi->hi, hi);
-            return PS_FAIL(ps, t.s, "%s: %.*s is out of range (%s .. %s)", pi->name, t.len, t.s,
-                           lo, hi);
+            return PS_FAIL(ps, t.s, "%s: %.*s is out of range (%s .. %s)", pi->name, t.len, t.s, lo,
+                           hi);
         }
     }
     if ((param == SCN_P_UP || param == SCN_P_NORMAL) && !out[0] && !out[1] && !out[2])
@@ -280,16 +281,18 @@ static int ps_new_name(ps_state *ps, ps_tok kw, ps_tok *t, char *dst)
     if (!ps_next(ps, t))
         return PS_FAIL(ps, kw.s, "'%.*s' needs a name", kw.len, kw.s);
     int ok = t->len <= SCN_MAX_NAME &&
-             ((t->s[0] >= 'a' && t->s[0] <= 'z') || (t->s[0] >= 'A' && t->s[0] <= 'Z') ||
-              t->s[0] == '_');
+        ((t->s[0] >= 'a' && t->s[0] <= 'z') || (t->s[0] >= 'A' && t->s[0] <= 'Z') ||
+         t->s[0] == '_');
     for (int i = 1; ok && i < t->len; i++) {
         char c = t->s[i];
         ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-             c == '_' || c == '-';
+            c == '_' || c == '-';
     }
     if (!ok)
-        return PS_FAIL(ps, t->s, "'%.*s' is not a valid name (a letter or _, then letters, digits, _ "
-                       "or -, at most %d characters)", t->len, t->s, SCN_MAX_NAME);
+        return PS_FAIL(ps, t->s,
+                       "'%.*s' is not a valid name (a letter or _, then letters, digits, _ "
+                       "or -, at most %d characters)",
+                       t->len, t->s, SCN_MAX_NAME);
     if (ps_is(*t, "camera") || ps_is(*t, "scene"))
         return PS_FAIL(ps, t->s, "'%.*s' is reserved and cannot name an item", t->len, t->s);
     int owner, item;
@@ -313,14 +316,19 @@ static int ps_camera(ps_state *ps, ps_tok kw)
     ps_tok t, prev = {0};
     int prev_arity = 0;
     while (ps_next(ps, &t)) {
-        int param = ps_is(t, "eye") ? SCN_P_EYE : ps_is(t, "at") ? SCN_P_AT : ps_is(t, "up") ? SCN_P_UP
-                    : ps_is(t, "fov") ? SCN_P_FOV : -1;
+        int param = ps_is(t, "eye") ? SCN_P_EYE
+            : ps_is(t, "at")        ? SCN_P_AT
+            : ps_is(t, "up")        ? SCN_P_UP
+            : ps_is(t, "fov")       ? SCN_P_FOV
+                                    : -1;
         if (param < 0)
             return ps_bad_property(ps, t, "the camera", prev, prev_arity, expected);
         if (ps_once(ps, t, &seen, 1u << param) != 0)
             return -1;
-        int32_t *dst = param == SCN_P_EYE ? d->eye : param == SCN_P_AT ? d->at
-                       : param == SCN_P_UP ? d->up : &d->fov;
+        int32_t *dst = param == SCN_P_EYE ? d->eye
+            : param == SCN_P_AT           ? d->at
+            : param == SCN_P_UP           ? d->up
+                                          : &d->fov;
         if (ps_values(ps, t, param, dst) != 0)
             return -1;
         prev = t;
@@ -386,20 +394,35 @@ static int ps_material(ps_state *ps, ps_tok kw)
     scn_material *m = &d->materials[d->nmaterials];
     /* Defaults (docs/scene-format.md): a light grey matte surface. */
     *m = (scn_material){.diffuse = {SCN_ONE * 4 / 5, SCN_ONE * 4 / 5, SCN_ONE * 4 / 5},
-                        .ambient = SCN_ONE, .shininess = 20, .ior = SCN_ONE, .scale = SCN_ONE,
-                        .turbulence = SCN_ONE, .octaves = 4, .palette = 0xFF};
+                        .ambient = SCN_ONE,
+                        .shininess = 20,
+                        .ior = SCN_ONE,
+                        .scale = SCN_ONE,
+                        .turbulence = SCN_ONE,
+                        .octaves = 4,
+                        .palette = 0xFF};
     static const char expected[] = "diffuse, color2, ambient, specular, shininess, reflect, "
                                    "transmit, ior, texture, palette, octaves, scale, turbulence";
     unsigned seen = 0;
     ps_tok t, prev = {0};
     int prev_arity = 0;
     while (ps_next(ps, &t)) {
-        static const struct { const char *name; int param; } props[] = {
-            {"diffuse", SCN_P_DIFFUSE}, {"color2", SCN_P_COLOR2}, {"ambient", SCN_P_MAT_AMBIENT},
-            {"specular", SCN_P_SPECULAR}, {"reflect", SCN_P_REFLECT}, {"transmit", SCN_P_TRANSMIT},
-            {"ior", SCN_P_IOR}, {"scale", SCN_P_SCALE}, {"turbulence", SCN_P_TURBULENCE},
-            {"shininess", SCN_P_COUNT}, {"texture", SCN_P_COUNT + 1}, {"palette", SCN_P_COUNT + 2},
-            {"octaves", SCN_P_COUNT + 3}};
+        static const struct {
+            const char *name;
+            int param;
+        } props[] = {{"diffuse", SCN_P_DIFFUSE},
+                     {"color2", SCN_P_COLOR2},
+                     {"ambient", SCN_P_MAT_AMBIENT},
+                     {"specular", SCN_P_SPECULAR},
+                     {"reflect", SCN_P_REFLECT},
+                     {"transmit", SCN_P_TRANSMIT},
+                     {"ior", SCN_P_IOR},
+                     {"scale", SCN_P_SCALE},
+                     {"turbulence", SCN_P_TURBULENCE},
+                     {"shininess", SCN_P_COUNT},
+                     {"texture", SCN_P_COUNT + 1},
+                     {"palette", SCN_P_COUNT + 2},
+                     {"octaves", SCN_P_COUNT + 3}};
         int k = -1;
         for (int i = 0; i < (int)(sizeof props / sizeof props[0]); i++)
             if (ps_is(t, props[i].name))
@@ -413,11 +436,15 @@ static int ps_material(ps_state *ps, ps_tok kw)
         prev_arity = 1;
         ps_tok v;
         if (param < SCN_P_COUNT) {
-            int32_t *dst = param == SCN_P_DIFFUSE ? m->diffuse : param == SCN_P_COLOR2 ? m->color2
-                           : param == SCN_P_MAT_AMBIENT ? &m->ambient : param == SCN_P_SPECULAR ? &m->specular
-                           : param == SCN_P_REFLECT ? &m->reflect : param == SCN_P_TRANSMIT ? &m->transmit
-                           : param == SCN_P_IOR ? &m->ior : param == SCN_P_SCALE ? &m->scale
-                           : &m->turbulence;
+            int32_t *dst = param == SCN_P_DIFFUSE ? m->diffuse
+                : param == SCN_P_COLOR2           ? m->color2
+                : param == SCN_P_MAT_AMBIENT      ? &m->ambient
+                : param == SCN_P_SPECULAR         ? &m->specular
+                : param == SCN_P_REFLECT          ? &m->reflect
+                : param == SCN_P_TRANSMIT         ? &m->transmit
+                : param == SCN_P_IOR              ? &m->ior
+                : param == SCN_P_SCALE            ? &m->scale
+                                                  : &m->turbulence;
             if (ps_values(ps, t, param, dst) != 0)
                 return -1;
             prev_arity = scn_params[param].arity;
@@ -432,13 +459,17 @@ static int ps_material(ps_state *ps, ps_tok kw)
             m->shininess = (uint16_t)n;
         } else if (param == SCN_P_COUNT + 1) {
             if ((n = ps_word(v, ps_textures, RT_TEX_COUNT)) < 0)
-                return PS_FAIL(ps, v.s, "unknown texture '%.*s' (expected none, checker, marble, "
-                               "wood or noise)", v.len, v.s);
+                return PS_FAIL(ps, v.s,
+                               "unknown texture '%.*s' (expected none, checker, marble, "
+                               "wood or noise)",
+                               v.len, v.s);
             m->texture = (uint8_t)n;
         } else if (param == SCN_P_COUNT + 2) {
             if ((n = ps_word(v, ps_palettes, RT_PAL_COUNT)) < 0)
-                return PS_FAIL(ps, v.s, "unknown palette '%.*s' (expected marble, wood, lava or "
-                               "sky)", v.len, v.s);
+                return PS_FAIL(ps, v.s,
+                               "unknown palette '%.*s' (expected marble, wood, lava or "
+                               "sky)",
+                               v.len, v.s);
             m->palette = (uint8_t)n;
         } else {
             if (ps_int(ps, v, "octaves", 1, RT_NOISE_MAX_OCTAVES, &n) != 0)
@@ -448,7 +479,8 @@ static int ps_material(ps_state *ps, ps_tok kw)
     }
     if (m->palette == 0xFF) /* each noise texture has a palette of its own by default */
         m->palette = m->texture == RT_TEX_WOOD ? RT_PAL_WOOD
-                     : m->texture == RT_TEX_NOISE ? RT_PAL_LAVA : RT_PAL_MARBLE;
+            : m->texture == RT_TEX_NOISE       ? RT_PAL_LAVA
+                                               : RT_PAL_MARBLE;
     if ((int64_t)m->reflect + m->transmit > SCN_ONE)
         return PS_FAIL(ps, name.s, "material '%.*s': reflect + transmit must not exceed 1",
                        name.len, name.s);
@@ -466,7 +498,8 @@ static int ps_object(ps_state *ps, ps_tok kw, int kind)
         return -1;
     scn_object *o = &d->objects[d->nobjects];
     *o = (scn_object){.kind = (uint8_t)kind};
-    const char *expected = kind == RT_SPHERE ? "material, center, radius" : "material, normal, offset";
+    const char *expected =
+        kind == RT_SPHERE ? "material, center, radius" : "material, normal, offset";
     unsigned seen = 0;
     ps_tok t, prev = {0};
     int prev_arity = 0;
@@ -488,14 +521,18 @@ static int ps_object(ps_state *ps, ps_tok kw, int kind)
             if (!ps_next(ps, &v))
                 return PS_FAIL(ps, t.s, "'material' needs a material name");
             if (ps_lookup(ps, v, &owner, &item) != 0 || owner != SCN_OWN_MATERIAL)
-                return PS_FAIL(ps, v.s, "undefined material '%.*s' (materials are defined before "
-                               "the objects that use them)", v.len, v.s);
+                return PS_FAIL(ps, v.s,
+                               "undefined material '%.*s' (materials are defined before "
+                               "the objects that use them)",
+                               v.len, v.s);
             o->material = (uint8_t)item;
             prev_arity = 1;
             continue;
         }
-        int32_t *dst = param == SCN_P_CENTER ? o->center : param == SCN_P_RADIUS ? &o->radius
-                       : param == SCN_P_NORMAL ? o->normal : &o->offset;
+        int32_t *dst = param == SCN_P_CENTER ? o->center
+            : param == SCN_P_RADIUS          ? &o->radius
+            : param == SCN_P_NORMAL          ? o->normal
+                                             : &o->offset;
         if (ps_values(ps, t, param, dst) != 0)
             return -1;
         prev_arity = scn_params[param].arity;
@@ -507,8 +544,9 @@ static int ps_object(ps_state *ps, ps_tok kw, int kind)
     for (int i = 0; i < 3; i++) {
         int b = (kind == RT_SPHERE ? bits_sphere : bits_plane)[i] - SCN_P_CENTER;
         if (!(seen & (1u << b)))
-            return PS_FAIL(ps, name.s, "%s '%.*s' has no '%s'", kind == RT_SPHERE ? "sphere" : "plane",
-                           name.len, name.s, (kind == RT_SPHERE ? need_sphere : need_plane)[i]);
+            return PS_FAIL(ps, name.s, "%s '%.*s' has no '%s'",
+                           kind == RT_SPHERE ? "sphere" : "plane", name.len, name.s,
+                           (kind == RT_SPHERE ? need_sphere : need_plane)[i]);
     }
     ps->object_line[d->nobjects++] = ps->line;
     return 0;
@@ -523,12 +561,15 @@ static int ps_key(ps_state *ps, ps_tok kw)
     scn_desc *d = &f->desc;
     ps_tok target, t;
     if (!ps_next(ps, &target))
-        return PS_FAIL(ps, kw.s, "'key' needs a track (such as camera.eye), a time, an "
+        return PS_FAIL(ps, kw.s,
+                       "'key' needs a track (such as camera.eye), a time, an "
                        "interpolation and values");
     const char *dot = memchr(target.s, '.', (size_t)target.len);
     if (!dot)
-        return PS_FAIL(ps, target.s, "'%.*s' is not a track: expected NAME.PARAMETER, such as "
-                       "camera.eye", target.len, target.s);
+        return PS_FAIL(ps, target.s,
+                       "'%.*s' is not a track: expected NAME.PARAMETER, such as "
+                       "camera.eye",
+                       target.len, target.s);
     ps_tok item_name = {target.s, (int)(dot - target.s)};
     ps_tok param_name = {dot + 1, target.len - item_name.len - 1};
     int owner, item = 0;
@@ -537,8 +578,10 @@ static int ps_key(ps_state *ps, ps_tok kw)
     else if (ps_is(item_name, "scene"))
         owner = SCN_OWN_SCENE;
     else if (ps_lookup(ps, item_name, &owner, &item) != 0)
-        return PS_FAIL(ps, target.s, "unknown name '%.*s' in track '%.*s' (items are defined "
-                       "before their keys)", item_name.len, item_name.s, target.len, target.s);
+        return PS_FAIL(ps, target.s,
+                       "unknown name '%.*s' in track '%.*s' (items are defined "
+                       "before their keys)",
+                       item_name.len, item_name.s, target.len, target.s);
     int param = -1;
     char have[160] = "";
     for (int p = 0; p < SCN_P_COUNT; p++) {
@@ -558,12 +601,16 @@ static int ps_key(ps_state *ps, ps_tok kw)
     if (ps_time(ps, t, "key time", &key.time_ms) != 0)
         return -1;
     if (!ps_next(ps, &t))
-        return PS_FAIL(ps, target.s, "key '%.*s' needs an interpolation (step, linear, smooth or "
-                       "spline)", target.len, target.s);
+        return PS_FAIL(ps, target.s,
+                       "key '%.*s' needs an interpolation (step, linear, smooth or "
+                       "spline)",
+                       target.len, target.s);
     int interp = ps_word(t, ps_interps, SCN_INTERP_COUNT);
     if (interp < 0)
-        return PS_FAIL(ps, t.s, "unknown interpolation '%.*s' (expected step, linear, smooth or "
-                       "spline)", t.len, t.s);
+        return PS_FAIL(ps, t.s,
+                       "unknown interpolation '%.*s' (expected step, linear, smooth or "
+                       "spline)",
+                       t.len, t.s);
     key.interp = (uint8_t)interp;
     if (ps_values(ps, target, param, key.v) != 0 || ps_end(ps) != 0)
         return -1;
@@ -584,9 +631,10 @@ static int ps_key(ps_state *ps, ps_tok kw)
     } else {
         const scn_key *last = &f->keys[f->tracks[tr].first + f->tracks[tr].count - 1];
         if (key.time_ms <= last->time_ms)
-            return PS_FAIL(ps, time_tok.s, "key at %.*s s is not after the previous key of '%.*s' "
-                           "(line %d)", time_tok.len, time_tok.s, target.len, target.s,
-                           ps->track_line[tr]);
+            return PS_FAIL(ps, time_tok.s,
+                           "key at %.*s s is not after the previous key of '%.*s' "
+                           "(line %d)",
+                           time_tok.len, time_tok.s, target.len, target.s, ps->track_line[tr]);
     }
     int total = 0;
     for (int i = 0; i < d->ntracks; i++)
@@ -625,19 +673,23 @@ static int ps_statement(ps_state *ps)
         return ps_key(ps, kw);
     if (ps_is(kw, "background") || ps_is(kw, "ambient"))
         return ps_values(ps, kw, ps_is(kw, "ambient") ? SCN_P_AMBIENT : SCN_P_BACKGROUND,
-                         ps_is(kw, "ambient") ? d->ambient : d->background) != 0 ? -1 : ps_end(ps);
+                         ps_is(kw, "ambient") ? d->ambient : d->background) != 0
+            ? -1
+            : ps_end(ps);
     if (ps_is(kw, "duration") || ps_is(kw, "fps") || ps_is(kw, "depth")) {
         if (!ps_next(ps, &t))
             return PS_FAIL(ps, kw.s, "'%.*s' needs a value", kw.len, kw.s);
         int rc = ps_is(kw, "duration") ? ps_time(ps, t, "duration", &d->duration_ms)
-                 : ps_is(kw, "fps")    ? ps_int(ps, t, "fps", 1, SCN_MAX_FPS, &d->fps)
+            : ps_is(kw, "fps")         ? ps_int(ps, t, "fps", 1, SCN_MAX_FPS, &d->fps)
                                        : ps_int(ps, t, "depth", 0, RT_MAX_DEPTH, &d->depth);
         if (ps_is(kw, "duration"))
             ps->have_duration = 1;
         return rc != 0 ? -1 : ps_end(ps);
     }
-    return PS_FAIL(ps, kw.s, "unknown statement '%.*s' (expected duration, fps, depth, background, "
-                   "ambient, camera, light, material, sphere, plane or key)", kw.len, kw.s);
+    return PS_FAIL(ps, kw.s,
+                   "unknown statement '%.*s' (expected duration, fps, depth, background, "
+                   "ambient, camera, light, material, sphere, plane or key)",
+                   kw.len, kw.s);
 }
 
 /* Largest value of component c of (param, item) over its base value and its keys. */
@@ -666,7 +718,8 @@ static int ps_finish(ps_state *ps)
     scn_desc *d = &ps->f->desc;
     int last = ps->line > 1 ? ps->line - 1 : 1;
     if (!ps->have_camera)
-        return ps_fail_at(ps, last, 1, "the scene has no camera (a line such as 'camera eye 0 2 8 "
+        return ps_fail_at(ps, last, 1,
+                          "the scene has no camera (a line such as 'camera eye 0 2 8 "
                           "at 0 1 0')");
     if (d->nobjects == 0)
         return ps_fail_at(ps, last, 1, "the scene has no sphere or plane");
@@ -674,18 +727,21 @@ static int ps_finish(ps_state *ps)
         const scn_track *tr = &d->tracks[t];
         int32_t end = d->keys[tr->first + tr->count - 1].time_ms;
         if (end > d->duration_ms)
-            return ps_fail_at(ps, ps->track_line[t], ps->track_col[t],
-                              "key at %ld.%03ld s is past the end of the scene (duration %ld.%03ld s)",
-                              (long)end / 1000, (long)end % 1000, (long)d->duration_ms / 1000,
-                              (long)d->duration_ms % 1000);
+            return ps_fail_at(
+                ps, ps->track_line[t], ps->track_col[t],
+                "key at %ld.%03ld s is past the end of the scene (duration %ld.%03ld s)",
+                (long)end / 1000, (long)end % 1000, (long)d->duration_ms / 1000,
+                (long)d->duration_ms % 1000);
     }
     for (int i = 0; i < d->nmaterials; i++) {
         const scn_material *m = &d->materials[i];
         int64_t r = ps_max_abs(d, SCN_P_REFLECT, i, &m->reflect, 1);
         int64_t tr = ps_max_abs(d, SCN_P_TRANSMIT, i, &m->transmit, 1);
         if (r + tr > SCN_ONE)
-            return ps_fail_at(ps, ps->material_line[i], 1, "material '%s': reflect + transmit "
-                              "exceeds 1 in its keys", ps->f->material_names[i]);
+            return ps_fail_at(ps, ps->material_line[i], 1,
+                              "material '%s': reflect + transmit "
+                              "exceeds 1 in its keys",
+                              ps->f->material_names[i]);
     }
     for (int i = 0; i < d->nobjects; i++) {
         const scn_object *o = &d->objects[i];
@@ -695,15 +751,18 @@ static int ps_finish(ps_state *ps)
         int64_t reach = PS_PLANE_REACH;
         if (o->kind == RT_SPHERE)
             reach = (ps_max_abs(d, SCN_P_CENTER, i, o->center, 3) +
-                     ps_max_abs(d, SCN_P_RADIUS, i, &o->radius, 1) + SCN_ONE - 1) / SCN_ONE;
+                     ps_max_abs(d, SCN_P_RADIUS, i, &o->radius, 1) + SCN_ONE - 1) /
+                SCN_ONE;
         int64_t scale = ps_max_abs(d, SCN_P_SCALE, o->material, &m->scale, 1);
         if (scale * reach > (int64_t)PS_TEXTURE_REACH * SCN_ONE) {
             char s[16];
             scn_format_q16((int32_t)scale, s);
-            return ps_fail_at(ps, ps->object_line[i], 1, "%s '%s': texture scale %s of material "
+            return ps_fail_at(ps, ps->object_line[i], 1,
+                              "%s '%s': texture scale %s of material "
                               "'%s' takes its points %lld units out, beyond the %d that Q16.16 "
-                              "textures allow", o->kind == RT_SPHERE ? "sphere" : "plane",
-                              ps->f->object_names[i], s, ps->f->material_names[o->material],
+                              "textures allow",
+                              o->kind == RT_SPHERE ? "sphere" : "plane", ps->f->object_names[i], s,
+                              ps->f->material_names[o->material],
                               (long long)(scale * reach / SCN_ONE), PS_TEXTURE_REACH);
         }
     }
@@ -712,8 +771,7 @@ static int ps_finish(ps_state *ps)
     return 0;
 }
 
-int scn_parse(const char *path, const char *text, size_t len, scn_file *f, char *err,
-              size_t errlen)
+int scn_parse(const char *path, const char *text, size_t len, scn_file *f, char *err, size_t errlen)
 {
     static ps_state ps;
     memset(&ps, 0, sizeof ps);
@@ -750,8 +808,10 @@ int scn_parse(const char *path, const char *text, size_t len, scn_file *f, char 
                 break;
             }
             if ((ch < 32 && ch != '\t') || ch >= 127)
-                return PS_FAIL(&ps, c, "unexpected character 0x%02x (scene files are plain ASCII "
-                               "text)", ch);
+                return PS_FAIL(&ps, c,
+                               "unexpected character 0x%02x (scene files are plain ASCII "
+                               "text)",
+                               ch);
         }
         if (ps_statement(&ps) != 0)
             return -1;
@@ -780,87 +840,10 @@ int scn_load(const char *path, scn_file *f, char *err, size_t errlen)
     if (bad)
         snprintf(err, errlen, "%s: cannot read (is it a directory?)", path);
     else if (n > (size_t)SCN_MAX_FILE_BYTES)
-        snprintf(err, errlen, "%s: larger than %ld bytes: not a scene file", path, SCN_MAX_FILE_BYTES);
+        snprintf(err, errlen, "%s: larger than %ld bytes: not a scene file", path,
+                 SCN_MAX_FILE_BYTES);
     else
         rc = scn_parse(path, buf, n, f, err, errlen);
     free(buf);
     return rc;
-}
-
-static void ps_write_ints(FILE *out, const int32_t *v, int n)
-{
-    fputc('{', out);
-    for (int i = 0; i < n; i++)
-        fprintf(out, "%s%ld", i ? ", " : "", (long)v[i]);
-    fputc('}', out);
-}
-
-int scn_write_c(FILE *out, const scn_desc *d, const char *name, const char *source_path)
-{
-    fprintf(out, "/* %s.c: the scene %s compiled into the program (generated by rt-scenec). */\n",
-            name, source_path);
-    fprintf(out, "#include <stddef.h>\n\n#include \"scn.h\"\n\n");
-    int nkeys = 0;
-    for (int t = 0; t < d->ntracks; t++)
-        nkeys += d->tracks[t].count;
-    if (d->ntracks) {
-        fprintf(out, "static const scn_track %s_tracks[%d] = {\n", name, d->ntracks);
-        for (int t = 0; t < d->ntracks; t++)
-            fprintf(out, "    {%d, %d, %d, %d},\n", d->tracks[t].param, d->tracks[t].item,
-                    d->tracks[t].first, d->tracks[t].count);
-        fprintf(out, "};\n\nstatic const scn_key %s_keys[%d] = {\n", name, nkeys);
-        for (int k = 0; k < nkeys; k++) {
-            fprintf(out, "    {%ld, %d, ", (long)d->keys[k].time_ms, d->keys[k].interp);
-            ps_write_ints(out, d->keys[k].v, 3);
-            fprintf(out, "},\n");
-        }
-        fprintf(out, "};\n\n");
-    }
-    fprintf(out, "const scn_desc %s = {\n", name);
-    fprintf(out, "    .duration_ms = %ld, .fps = %ld, .depth = %ld,\n", (long)d->duration_ms,
-            (long)d->fps, (long)d->depth);
-    const struct { const char *n; const int32_t *v; } vecs[] = {
-        {"background", d->background}, {"ambient", d->ambient}, {"eye", d->eye}, {"at", d->at},
-        {"up", d->up}};
-    for (int i = 0; i < 5; i++) {
-        fprintf(out, "    .%s = ", vecs[i].n);
-        ps_write_ints(out, vecs[i].v, 3);
-        fprintf(out, ",\n");
-    }
-    fprintf(out, "    .fov = %ld,\n", (long)d->fov);
-    fprintf(out, "    .nobjects = %d, .nlights = %d, .nmaterials = %d, .ntracks = %d,\n",
-            d->nobjects, d->nlights, d->nmaterials, d->ntracks);
-    fprintf(out, "    .objects = {\n");
-    for (int i = 0; i < d->nobjects; i++) {
-        const scn_object *o = &d->objects[i];
-        fprintf(out, "        {%d, %d, ", o->kind, o->material);
-        ps_write_ints(out, o->center, 3);
-        fprintf(out, ", %ld, ", (long)o->radius);
-        ps_write_ints(out, o->normal, 3);
-        fprintf(out, ", %ld},\n", (long)o->offset);
-    }
-    fprintf(out, "    },\n    .lights = {\n");
-    for (int i = 0; i < d->nlights; i++) {
-        fprintf(out, "        {");
-        ps_write_ints(out, d->lights[i].pos, 3);
-        fprintf(out, ", ");
-        ps_write_ints(out, d->lights[i].color, 3);
-        fprintf(out, "},\n");
-    }
-    fprintf(out, "    },\n    .materials = {\n");
-    for (int i = 0; i < d->nmaterials; i++) {
-        const scn_material *m = &d->materials[i];
-        fprintf(out, "        {");
-        ps_write_ints(out, m->diffuse, 3);
-        fprintf(out, ", ");
-        ps_write_ints(out, m->color2, 3);
-        fprintf(out, ", %ld, %ld, %ld, %ld, %ld, %ld, %ld, %d, %d, %d, %d},\n", (long)m->ambient,
-                (long)m->specular, (long)m->reflect, (long)m->transmit, (long)m->ior,
-                (long)m->scale, (long)m->turbulence, m->shininess, m->texture, m->palette,
-                m->octaves);
-    }
-    fprintf(out, "    },\n");
-    fprintf(out, "    .tracks = %s%s,\n    .keys = %s%s,\n};\n", d->ntracks ? name : "NULL",
-            d->ntracks ? "_tracks" : "", d->ntracks ? name : "NULL", d->ntracks ? "_keys" : "");
-    return ferror(out) ? -1 : 0;
 }

@@ -38,16 +38,16 @@ enum rt_texture_kind {
 enum rt_palette_id { RT_PAL_MARBLE, RT_PAL_WOOD, RT_PAL_LAVA, RT_PAL_SKY, RT_PAL_COUNT };
 
 typedef struct rt_texture {
-    uint8_t kind;       /* enum rt_texture_kind */
-    uint8_t palette;    /* enum rt_palette_id */
-    uint8_t octaves;    /* noise octaves, 1..RT_NOISE_MAX_OCTAVES */
-    real scale;         /* texture features per scene unit */
-    real turbulence;    /* strength of the noise disturbance */
-    rt_color color2;    /* second colour of the checkerboard */
+    uint8_t kind;    /* enum rt_texture_kind */
+    uint8_t palette; /* enum rt_palette_id */
+    uint8_t octaves; /* noise octaves, 1..RT_NOISE_MAX_OCTAVES */
+    real scale;      /* texture features per scene unit */
+    real turbulence; /* strength of the noise disturbance */
+    rt_color color2; /* second colour of the checkerboard */
 } rt_texture;
 
 typedef struct rt_material {
-    rt_color diffuse;   /* r_d: diffuse colour (unless textured) */
+    rt_color diffuse; /* r_d: diffuse colour (unless textured) */
     rt_texture tex;
     real ambient;       /* r_a: share of the ambient light reflected */
     real specular;      /* r_s in [0, 1] */
@@ -66,10 +66,10 @@ typedef struct rt_object {
     vec3 center;      /* sphere */
     real radius;
     wide radius2;
-    rinv inv_radius;  /* sphere: for its normals (d3_norm_near), filled by rt_scene_prepare */
-    vec3 axis;        /* plane: normal as given (any length) */
-    real offset;      /* plane: points p with p . unit(axis) = offset */
-    dir3 normal;      /* plane: unit(axis), filled by rt_scene_prepare */
+    rinv inv_radius; /* sphere: for its normals (d3_norm_near), filled by rt_scene_prepare */
+    vec3 axis;       /* plane: normal as given (any length) */
+    real offset;     /* plane: points p with p . unit(axis) = offset */
+    dir3 normal;     /* plane: unit(axis), filled by rt_scene_prepare */
 } rt_object;
 
 typedef struct rt_light {
@@ -112,11 +112,11 @@ typedef struct rt_scene {
     rt_material materials[RT_MAX_MATERIALS];
     rt_camera camera;
     /* Derived by rt_scene_prepare (or rt_scene_force_effects): */
-    unsigned effects;                   /* RT_FX_* bits the frame needs */
-    int reach_depth;                    /* recursion depth the materials can reach */
-    uint32_t occluders[RT_MAX_LIGHTS];  /* per light: objects that can shadow something */
-    int forced;                         /* 1: every effect forced on, nothing skipped */
-    uint32_t near_lights;               /* bit i: a surface passes within RT_NEAR_LIGHT of
+    unsigned effects;                  /* RT_FX_* bits the frame needs */
+    int reach_depth;                   /* recursion depth the materials can reach */
+    uint32_t occluders[RT_MAX_LIGHTS]; /* per light: objects that can shadow something */
+    int forced;                        /* 1: every effect forced on, nothing skipped */
+    uint32_t near_lights;              /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
     /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
      * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 and
@@ -183,8 +183,8 @@ typedef struct rt_params {
 
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
-    uint32_t shadow_tests; /* object intersection tests made by shadow rays */
-    uint32_t noise_octaves; /* noise octaves summed by the textures evaluated (each noise
+    uint32_t shadow_tests;            /* object intersection tests made by shadow rays */
+    uint32_t noise_octaves;           /* noise octaves summed by the textures evaluated (each noise
                                texture at a point adds the octaves it sums) */
     uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
@@ -226,7 +226,7 @@ void rt_scene_force_effects(rt_scene *s);
 /* Is `e` (RT_FX_* bits) both compiled in and needed by the scene? */
 static inline int rt_scene_has(const rt_scene *s, unsigned e)
 {
-    return (s->effects & (RT_COMPILED_EFFECTS) & e) != 0;
+    return (s->effects & (RT_COMPILED_EFFECTS)&e) != 0;
 }
 
 /* 0 when the camera has no view direction: its eye and the point it looks at coincide (an
@@ -274,17 +274,16 @@ void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t
  * point of the edge between them). A band traces the corners on its lower edge again, as the
  * next band does: summed stats count those twice. */
 void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
-                    int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                    int nbands);
+                    int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands);
 
 /* The most bands a frame of `height` rows splits into: its rows of squares (adaptive) or of
  * pixels (full); more bands than this leave some empty. */
 int rt_render_band_count(const rt_params *p, int height);
 
 /* The adaptive mode of rt_render_band (subsample.c). */
-void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
-                        uint32_t *pixels, int stride, rt_stats *stats, void *work,
-                        uint8_t *traced, int band, int nbands);
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                        int nbands);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

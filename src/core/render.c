@@ -7,7 +7,8 @@ static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p,
                         int stride, rt_stats *stats, uint8_t *traced, int band, int nbands)
 {
     rt_sample sample;
-    int y0 = (int)((long)v->height * band / nbands), y1 = (int)((long)v->height * (band + 1) / nbands);
+    int y0 = (int)((long)v->height * band / nbands),
+        y1 = (int)((long)v->height * (band + 1) / nbands);
     for (int y = y0; y < y1; y++) {
         uint32_t *row = pixels + (long)y * stride;
         for (int x = 0; x < v->width; x++) {

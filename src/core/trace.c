@@ -53,8 +53,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 
     uint8_t cell = 0;
     rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
-                        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
-                        : m->diffuse;
+        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
+        : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
@@ -95,8 +95,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                  * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
                 c->stats->rays_shadow++;
                 if (sdist > R_EPS_OFFSET)
-                    blocked = rt_occluded(s, c->stats, i, occ, p_out, sl,
-                                             r_sub(sdist, R_EPS_OFFSET));
+                    blocked =
+                        rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
             }
             if (!blocked) {
                 state = 1;

@@ -208,9 +208,9 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
     }
 }
 
-void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
-                        uint32_t *pixels, int stride, rt_stats *stats, void *work,
-                        uint8_t *traced, int band, int nbands)
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                        int nbands)
 {
     const int g = p->grid, width = v->width, height = v->height;
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
@@ -218,8 +218,14 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     int r0 = (int)((long)nrows * band / nbands), r1 = (int)((long)nrows * (band + 1) / nbands);
     if (r0 == r1)
         return;
-    ss_ctx c = {.scene = s, .view = v, .params = p, .stats = stats, .pixels = pixels,
-                .stride = stride, .traced = traced, .thr8 = r_to_byte(p->threshold),
+    ss_ctx c = {.scene = s,
+                .view = v,
+                .params = p,
+                .stats = stats,
+                .pixels = pixels,
+                .stride = stride,
+                .traced = traced,
+                .thr8 = r_to_byte(p->threshold),
                 .lstride = g + 1};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)

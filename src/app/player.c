@@ -18,7 +18,8 @@ static long player_int(const char *opt, const char *s, long lo, long hi)
     char *end;
     long v = strtol(s, &end, 10);
     if (!*s || *end || v < lo || v > hi) {
-        fprintf(stderr, "%s: %s: '%s' is not a whole number in %ld..%ld\n", player_name, opt, s, lo, hi);
+        fprintf(stderr, "%s: %s: '%s' is not a whole number in %ld..%ld\n", player_name, opt, s, lo,
+                hi);
         return -1;
     }
     return v;
@@ -41,22 +42,28 @@ int app_main(int argc, char **argv)
         const char *slash = strrchr(argv[0], '/');
         player_name = slash ? slash + 1 : argv[0];
     }
-    play_opts o = {.desc = &scn_intro, .name = "intro", .width = 640, .height = 480,
+    play_opts o = {.desc = &scn_intro,
+                   .name = "intro",
+                   .width = 640,
+                   .height = 480,
                    .threads = plat_cpu_count(),
-                   .params = {.depth = -1, .min_contrib = RT_DEFAULT_MIN_CONTRIB,
-                              .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID,
+                   .params = {.depth = -1,
+                              .min_contrib = RT_DEFAULT_MIN_CONTRIB,
+                              .mode = RT_MODE_ADAPTIVE,
+                              .grid = RT_DEFAULT_GRID,
                               .threshold = RT_DEFAULT_THRESHOLD}};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             printf("usage: %s [--size WxH] [--threads N] [--frames N] [--screenshot FILE]\n"
                    "plays the fixray intro in a window: Esc/Q quit, Space pause, F full screen,\n"
-                   "S traced points, Left/Right seek 5 s, G grid size (build/rt-%s play has every option)\n",
+                   "S traced points, Left/Right seek 5 s, G grid size (build/rt-%s play has every "
+                   "option)\n",
                    player_name, REAL_NAME);
             return 0;
         }
         int known = strcmp(a, "--size") == 0 || strcmp(a, "--threads") == 0 ||
-                    strcmp(a, "--frames") == 0 || strcmp(a, "--screenshot") == 0;
+            strcmp(a, "--frames") == 0 || strcmp(a, "--screenshot") == 0;
         if (!v || !known) {
             fprintf(stderr, "%s: %s: %s (see %s --help)\n", player_name, a,
                     known ? "needs a value" : "unknown option", player_name);
@@ -93,7 +100,8 @@ int app_main(int argc, char **argv)
             }
             o.screenshot = v;
         } else {
-            fprintf(stderr, "%s: %s: unknown option (see %s --help)\n", player_name, a, player_name);
+            fprintf(stderr, "%s: %s: unknown option (see %s --help)\n", player_name, a,
+                    player_name);
             return 2;
         }
     }

@@ -10,8 +10,8 @@ typedef struct play_opts {
     const char *name;     /* its name, for the window title */
     int width, height;    /* render size */
     int threads;
-    rt_params params;     /* depth < 0: the scene's */
-    long frames;          /* > 0: quit after this many frames, stepping one frame period each */
+    rt_params params;       /* depth < 0: the scene's */
+    long frames;            /* > 0: quit after this many frames, stepping one frame period each */
     const char *screenshot; /* save the last frame shown here (PNG or PPM), or NULL */
     int show_samples;
 } play_opts;

@@ -1,7 +1,7 @@
 /* scn.c: the timeline: interpolates a scene description's tracks in integers and builds the rt_scene of one moment. */
 #include "scn.h"
 
-#define Q(x) ((int32_t)((x) * SCN_ONE))
+#define Q(x) ((int32_t)((x)*SCN_ONE))
 #define SCN_COORD Q(4096) /* R_SCENE_MAX */
 
 /* Ranges follow the numeric layer (see docs/scene-format.md): positions inside the scene
@@ -73,9 +73,7 @@ void scn_track_value(const scn_desc *d, const scn_track *tr, int32_t t_ms, int32
     for (int c = 0; c < pi->arity; c++) {
         int64_t p1 = a->v[c], p2 = b->v[c], v;
         switch (a->interp) {
-        case SCN_LINEAR:
-            v = p1 + scn_round16((p2 - p1) * u);
-            break;
+        case SCN_LINEAR: v = p1 + scn_round16((p2 - p1) * u); break;
         case SCN_SMOOTH: /* 3u^2 - 2u^3: starts and ends at rest */
             v = p1 + scn_round16((p2 - p1) * (3 * u2 - 2 * u3));
             break;

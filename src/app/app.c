@@ -27,10 +27,7 @@ extern const scn_desc scn_intro;
 static const char *app_name = "rt";
 
 /* The platform's clock in microseconds. */
-static uint64_t app_us(void)
-{
-    return plat_time_ns() / 1000u;
-}
+static uint64_t app_us(void) { return plat_time_ns() / 1000u; }
 
 typedef struct app_opts {
     const char *output;
@@ -54,52 +51,53 @@ typedef struct app_opts {
 
 static void app_usage(FILE *f)
 {
-    fprintf(f,
-            "usage: %s render [options]     render frames of a scene to image files\n"
-            "       %s play [options]       play a scene in a window, in real time\n"
-            "  --scene FILE        scene file (docs/scene-format.md; default: the built-in intro,\n"
-            "                      scenes/intro.scene)\n"
-            "  -o, --output FILE   output image, .png or .ppm (default frame.png); with --frames\n"
-            "                      a pattern with one frame-number field, e.g. out/intro-%%04d.png\n"
-            "  --size WxH          image size, each side 1..%d (default 320x240)\n"
-            "  --time SECONDS      moment of the scene's timeline, e.g. 2.5 (default 0)\n"
-            "  --frame N           frame N at the scene's frame rate (instead of --time)\n"
-            "  --frames A-B        frames A to B, one file each (-o pattern); --frames all: every\n"
-            "                      frame of the scene\n"
-            "  --step N            with --frames: every Nth frame of the range (default 1)\n"
-            "  --checksum          print frame=N time_ms=T fnv64=H per frame (64-bit FNV-1a of\n"
-            "                      the RGB bytes); writes no image unless -o is given\n"
-            "  --progress          a progress line on standard error (default with --frames when\n"
-            "                      standard error is a terminal)\n"
-            "  --depth N           recursion limit 0..%d (default: the scene's)\n"
-            "  --mode M            full (trace every pixel) or adaptive (default)\n"
-            "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
-            "  --threshold X       adaptive: split squares whose corners' colour contributions\n"
-            "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
-            "  --min-contrib X     skip secondary rays weighing less than X in the pixel, 0..1\n"
-            "                      (default 0.01; 0 = trace every ray)\n"
-            "  --octaves N         noise textures sum at most N octaves, 1..8 (default: each\n"
-            "                      texture's own count, from the scene)\n"
-            "  --effects E         auto: trace only the effects the frame needs (default);\n"
-            "                      all: every effect on, for comparison\n"
-            "  --show-samples      paint every traced point white\n"
-            "  --threads N         render on N threads, 1..%d (default: every processor, %d\n"
-            "                      here); the picture is the same for any N\n"
-            "  --stats             print key=value statistics on standard output (with --frames:\n"
-            "                      summed over the frames)\n"
-            "play: --scene, --size (default 640x480), --threads, --depth, --mode, --grid,\n"
-            "--threshold, --min-contrib, --octaves and --show-samples as above, and\n"
-            "  --frames N          quit after N frames, stepping the timeline by exactly one frame\n"
-            "                      period each (a scripted, reproducible run)\n"
-            "  --screenshot FILE   save the last frame shown (.png or .ppm)\n"
-            "  keys: Esc or Q quit, Space pause, F full screen, S traced points, Left/Right seek\n"
-            "  5 s, G grid size (2, 4, 8, 16); the title shows frames per second and ms per frame\n"
-            "       %s --help\n"
-            "Errors get one line on standard error: exit status 2 for bad options, scenes and\n"
-            "output names (all refused before rendering), 1 when writing a file fails.\n"
-            "Number system of this build: %s.\n",
-            app_name, app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, PLAT_MAX_THREADS,
-            plat_cpu_count(), app_name, APP_REAL);
+    fprintf(
+        f,
+        "usage: %s render [options]     render frames of a scene to image files\n"
+        "       %s play [options]       play a scene in a window, in real time\n"
+        "  --scene FILE        scene file (docs/scene-format.md; default: the built-in intro,\n"
+        "                      scenes/intro.scene)\n"
+        "  -o, --output FILE   output image, .png or .ppm (default frame.png); with --frames\n"
+        "                      a pattern with one frame-number field, e.g. out/intro-%%04d.png\n"
+        "  --size WxH          image size, each side 1..%d (default 320x240)\n"
+        "  --time SECONDS      moment of the scene's timeline, e.g. 2.5 (default 0)\n"
+        "  --frame N           frame N at the scene's frame rate (instead of --time)\n"
+        "  --frames A-B        frames A to B, one file each (-o pattern); --frames all: every\n"
+        "                      frame of the scene\n"
+        "  --step N            with --frames: every Nth frame of the range (default 1)\n"
+        "  --checksum          print frame=N time_ms=T fnv64=H per frame (64-bit FNV-1a of\n"
+        "                      the RGB bytes); writes no image unless -o is given\n"
+        "  --progress          a progress line on standard error (default with --frames when\n"
+        "                      standard error is a terminal)\n"
+        "  --depth N           recursion limit 0..%d (default: the scene's)\n"
+        "  --mode M            full (trace every pixel) or adaptive (default)\n"
+        "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
+        "  --threshold X       adaptive: split squares whose corners' colour contributions\n"
+        "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
+        "  --min-contrib X     skip secondary rays weighing less than X in the pixel, 0..1\n"
+        "                      (default 0.01; 0 = trace every ray)\n"
+        "  --octaves N         noise textures sum at most N octaves, 1..8 (default: each\n"
+        "                      texture's own count, from the scene)\n"
+        "  --effects E         auto: trace only the effects the frame needs (default);\n"
+        "                      all: every effect on, for comparison\n"
+        "  --show-samples      paint every traced point white\n"
+        "  --threads N         render on N threads, 1..%d (default: every processor, %d\n"
+        "                      here); the picture is the same for any N\n"
+        "  --stats             print key=value statistics on standard output (with --frames:\n"
+        "                      summed over the frames)\n"
+        "play: --scene, --size (default 640x480), --threads, --depth, --mode, --grid,\n"
+        "--threshold, --min-contrib, --octaves and --show-samples as above, and\n"
+        "  --frames N          quit after N frames, stepping the timeline by exactly one frame\n"
+        "                      period each (a scripted, reproducible run)\n"
+        "  --screenshot FILE   save the last frame shown (.png or .ppm)\n"
+        "  keys: Esc or Q quit, Space pause, F full screen, S traced points, Left/Right seek\n"
+        "  5 s, G grid size (2, 4, 8, 16); the title shows frames per second and ms per frame\n"
+        "       %s --help\n"
+        "Errors get one line on standard error: exit status 2 for bad options, scenes and\n"
+        "output names (all refused before rendering), 1 when writing a file fails.\n"
+        "Number system of this build: %s.\n",
+        app_name, app_name, APP_MAX_SIDE, RT_MAX_DEPTH, RT_DEFAULT_GRID, PLAT_MAX_THREADS,
+        plat_cpu_count(), app_name, APP_REAL);
 }
 
 static int app_error(const char *option, const char *what, const char *value)
@@ -192,14 +190,13 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         const char *expected;
         int kr;
         int takes_value = strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0 ||
-                          strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 ||
-                          strcmp(a, "--frame") == 0 || knobs_is_option(a) ||
-                          strcmp(a, "--frames") == 0 || strcmp(a, "--step") == 0 ||
-                          strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0 ||
-                          strcmp(a, "--threads") == 0 || strcmp(a, "--screenshot") == 0;
-        static const char *const render_only[] = {"-o", "--output", "--time", "--frame", "--step",
-                                                  "--checksum", "--progress", "--stats",
-                                                  "--effects"};
+            strcmp(a, "--size") == 0 || strcmp(a, "--time") == 0 || strcmp(a, "--frame") == 0 ||
+            knobs_is_option(a) || strcmp(a, "--frames") == 0 || strcmp(a, "--step") == 0 ||
+            strcmp(a, "--scene") == 0 || strcmp(a, "--effects") == 0 ||
+            strcmp(a, "--threads") == 0 || strcmp(a, "--screenshot") == 0;
+        static const char *const render_only[] = {"-o",         "--output", "--time",
+                                                  "--frame",    "--step",   "--checksum",
+                                                  "--progress", "--stats",  "--effects"};
         for (size_t k = 0; o->play && k < sizeof render_only / sizeof *render_only; k++)
             if (strcmp(a, render_only[k]) == 0)
                 return app_error(a, "is an option of render, not of play", NULL);
@@ -247,7 +244,8 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
             o->threads = (int)n;
         } else if (strcmp(a, "--frames") == 0) {
             if (app_parse_frames(v, &o->first, &o->last) != 0)
-                return app_error(a, "expected FIRST-LAST frame numbers with FIRST <= LAST, or all", v);
+                return app_error(a, "expected FIRST-LAST frame numbers with FIRST <= LAST, or all",
+                                 v);
             o->have_frames = 1;
         } else if (strcmp(a, "--step") == 0) {
             if (knobs_int(v, NULL, 1, APP_MAX_FRAME, &o->step) != 0)
@@ -287,8 +285,10 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
     if (o->have_step && !o->have_frames)
         return app_error("--step", "goes with --frames", NULL);
     if (o->have_frames && !o->output && !o->checksum)
-        return app_error("--frames", "needs -o with a frame-number pattern (such as "
-                         "out/intro-%04d.png) or --checksum", NULL);
+        return app_error("--frames",
+                         "needs -o with a frame-number pattern (such as "
+                         "out/intro-%04d.png) or --checksum",
+                         NULL);
     if (!o->output && !o->checksum)
         o->output = "frame.png";
     if (o->output && !img_path_ok(o->output))
@@ -297,21 +297,25 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
         char name[4096];
         int fields = app_expand(o->output, 0, name, sizeof name);
         if (fields == -1)
-            return app_error("-o", "a '%' starts the frame-number field (%d, %04d, ...) or "
-                             "stands for itself as %%", o->output);
+            return app_error("-o",
+                             "a '%' starts the frame-number field (%d, %04d, ...) or "
+                             "stands for itself as %%",
+                             o->output);
         if (fields == -2)
             return app_error("-o", "the file name is too long", NULL);
         if (fields != 1)
-            return app_error("-o", "with --frames the output needs one frame-number field, "
-                             "such as %04d", o->output);
+            return app_error("-o",
+                             "with --frames the output needs one frame-number field, "
+                             "such as %04d",
+                             o->output);
     }
     return 0;
 }
 
 /* Counters of rt_stats summed over the frames of a run (64 bits: many frames, large ones). */
 typedef struct app_sums {
-    unsigned long long rays[4], shadow_tests, noise_octaves, squares[RT_GRID_LEVELS], split[RT_GRID_LEVELS],
-        split_by[5];
+    unsigned long long rays[4], shadow_tests, noise_octaves, squares[RT_GRID_LEVELS],
+        split[RT_GRID_LEVELS], split_by[5];
 } app_sums;
 
 static void app_add(app_sums *t, const rt_stats *s)
@@ -344,24 +348,25 @@ static unsigned long long app_fnv(const plat_frame *f)
 }
 
 static void app_print_stats(const app_opts *o, const char *scene_name, const rt_scene *scene,
-                            const rt_params *params, long frames, const app_sums *t,
-                            uint64_t us, unsigned long work_bytes)
+                            const rt_params *params, long frames, const app_sums *t, uint64_t us,
+                            unsigned long work_bytes)
 {
     printf("real=%s\nscene=%s\nsize=%dx%d\n", APP_REAL, scene_name, o->width, o->height);
     if (o->have_frames)
-        printf("frames=%ld\nfirst_frame=%ld\nlast_frame=%ld\nstep=%ld\n", frames, o->first,
-               o->last, o->step);
+        printf("frames=%ld\nfirst_frame=%ld\nlast_frame=%ld\nstep=%ld\n", frames, o->first, o->last,
+               o->step);
     else
         printf("time_ms=%ld\n", (long)o->time_ms);
     printf("depth=%d\n", params->depth);
-    static const char *const fx_names[] = {"shadow", "specular", "reflect", "refract", "texture",
-                                           "noise"};
+    static const char *const fx_names[] = {"shadow",  "specular", "reflect",
+                                           "refract", "texture",  "noise"};
     printf("effects=");
     for (int b = 0, n = 0; b < 6; b++)
         if (scene->effects & (1u << b))
             printf("%s%s", n++ ? "," : "", fx_names[b]);
     printf("%s\n", scene->effects ? "" : "none");
-    printf("reach_depth=%d\n", params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
+    printf("reach_depth=%d\n",
+           params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
     printf("mode=%s\n", o->k.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
     if (o->k.mode == RT_MODE_ADAPTIVE)
         printf("grid=%d\nthreshold=%ld.%04ld\n", o->k.grid, (long)o->k.threshold / KNOBS_SCALE,
@@ -416,8 +421,12 @@ static const scn_desc *app_scene(const app_opts *o, const char **name)
 /* Options as the command line gives them. */
 static app_opts app_defaults(int play)
 {
-    return (app_opts){.width = play ? 640 : 320, .height = play ? 480 : 240, .k = KNOBS_DEFAULTS,
-                      .step = 1, .threads = plat_cpu_count(), .play = play};
+    return (app_opts){.width = play ? 640 : 320,
+                      .height = play ? 480 : 240,
+                      .k = KNOBS_DEFAULTS,
+                      .step = 1,
+                      .threads = plat_cpu_count(),
+                      .play = play};
 }
 
 static int app_play(int argc, char **argv)
@@ -426,8 +435,11 @@ static int app_play(int argc, char **argv)
     int rc = app_parse_render(argc, argv, &o);
     if (rc != 0)
         return rc < 0 ? 0 : rc; /* -1: --help */
-    play_opts p = {.width = o.width, .height = o.height, .threads = o.threads,
-                   .frames = o.play_frames, .screenshot = o.screenshot,
+    play_opts p = {.width = o.width,
+                   .height = o.height,
+                   .threads = o.threads,
+                   .frames = o.play_frames,
+                   .screenshot = o.screenshot,
                    .show_samples = o.show_samples,
                    .params = knobs_params(&o.k, -1)};
     p.desc = app_scene(&o, &p.name);
@@ -455,8 +467,8 @@ static int app_render(int argc, char **argv)
     if (o.have_frame || o.have_frames) {
         long f = o.have_frame ? o.frame : o.last;
         if (f > last_frame) {
-            fprintf(stderr, "%s: %s: %ld is past the last frame of %s (%ld at %ld fps)\n",
-                    app_name, o.have_frame ? "--frame" : "--frames", f, scene_name, last_frame,
+            fprintf(stderr, "%s: %s: %ld is past the last frame of %s (%ld at %ld fps)\n", app_name,
+                    o.have_frame ? "--frame" : "--frames", f, scene_name, last_frame,
                     (long)desc->fps);
             return 2;
         }
@@ -490,8 +502,10 @@ static int app_render(int argc, char **argv)
         }
         scn_eval(desc, t, &scene);
         if (!rt_view_ok(&scene.camera)) {
-            fprintf(stderr, "%s: %s: at %ld.%03ld s the camera's eye and the point it looks at "
-                    "coincide: no view direction\n", app_name, scene_name, APP_SECONDS(t));
+            fprintf(stderr,
+                    "%s: %s: at %ld.%03ld s the camera's eye and the point it looks at "
+                    "coincide: no view direction\n",
+                    app_name, scene_name, APP_SECONDS(t));
             return 2;
         }
     }
@@ -508,8 +522,8 @@ static int app_render(int argc, char **argv)
     if (!fc_ok || (o.show_samples && !traced) ||
         plat_frame_acquire(&frame, o.width, o.height) != 0) {
         /* frame, samples map, working storage, and 3 bytes a pixel when the file is written */
-        unsigned long long need = (unsigned long long)pixels * (4 + 3 + (o.show_samples ? 1 : 0))
-                                  + (unsigned long long)work_bytes * (unsigned)o.threads;
+        unsigned long long need = (unsigned long long)pixels * (4 + 3 + (o.show_samples ? 1 : 0)) +
+            (unsigned long long)work_bytes * (unsigned)o.threads;
         fprintf(stderr, "%s: out of memory for a %dx%d frame (%llu MiB)\n", app_name, o.width,
                 o.height, (need + (1 << 20) - 1) >> 20);
         if (fc_ok)
@@ -555,10 +569,12 @@ static int app_render(int argc, char **argv)
         if (progress) {
             uint64_t el = app_us() - start + 1;
             unsigned long long fps10 = (unsigned long long)(i + 1) * 10000000u / el;
-            unsigned long long left = el * (unsigned long long)(nframes - i - 1) / (i + 1) / 1000000u;
-            fprintf(stderr, "\r%s: frame %ld (%ld of %ld, %ld%%), %llu.%llu frames/s, %llu s left  ",
-                    app_name, f >= 0 ? f : 0, i + 1, nframes, (i + 1) * 100 / nframes,
-                    fps10 / 10, fps10 % 10, left);
+            unsigned long long left =
+                el * (unsigned long long)(nframes - i - 1) / (i + 1) / 1000000u;
+            fprintf(stderr,
+                    "\r%s: frame %ld (%ld of %ld, %ld%%), %llu.%llu frames/s, %llu s left  ",
+                    app_name, f >= 0 ? f : 0, i + 1, nframes, (i + 1) * 100 / nframes, fps10 / 10,
+                    fps10 % 10, left);
             if (i + 1 == nframes || rc != 0)
                 fputc('\n', stderr);
         }

@@ -14,7 +14,7 @@
 /* Where the timeline is. */
 typedef struct play_clock {
     int64_t duration_ms;
-    int64_t base_ms;  /* position at base_ns */
+    int64_t base_ms; /* position at base_ns */
     uint64_t base_ns;
     int paused;
 } play_clock;
@@ -163,8 +163,9 @@ int play_run(const play_opts *o)
         fprintf(stderr,
                 "%s: %ld frames in %lu.%02lu s (%lu.%lu fps shown); rendering %lu.%02lu ms/frame "
                 "mean, %lu.%02lu worst; %dx%d, %s, %d thread%s\n",
-                plat_program(), n, (unsigned long)(wall / 1000000000u), (unsigned long)(wall / 10000000u % 100),
-                PLAY_TENTHS(fps10), (unsigned long)(mean100 / 100), (unsigned long)(mean100 % 100),
+                plat_program(), n, (unsigned long)(wall / 1000000000u),
+                (unsigned long)(wall / 10000000u % 100), PLAY_TENTHS(fps10),
+                (unsigned long)(mean100 / 100), (unsigned long)(mean100 % 100),
                 (unsigned long)(worst100 / 100), (unsigned long)(worst100 % 100), o->width,
                 o->height, PLAY_REAL, o->threads, o->threads == 1 ? "" : "s");
     }

@@ -18,9 +18,11 @@ typedef struct knobs {
 } knobs;
 
 /* The defaults of `render` (README): RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB. */
-#define KNOBS_DEFAULTS                                                                           \
-    {.depth = -1, .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID, .threshold = 625,           \
-     .min_contrib = 100, .octaves = 0}
+#define KNOBS_DEFAULTS \
+    { \
+        .depth = -1, .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID, .threshold = 625, \
+        .min_contrib = 100, .octaves = 0 \
+    }
 
 /* 1 when `opt` is one of the settings' options (each takes a value), else 0. */
 int knobs_is_option(const char *opt);

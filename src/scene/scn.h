@@ -37,11 +37,11 @@ enum scn_param {
     SCN_P_FOV,        /* camera: vertical field of view, degrees */
     SCN_P_LIGHT_POS,  /* light position */
     SCN_P_LIGHT_COLOR,
-    SCN_P_CENTER,     /* sphere */
-    SCN_P_RADIUS,     /* sphere */
-    SCN_P_NORMAL,     /* plane: normal (any length) */
-    SCN_P_OFFSET,     /* plane: distance from the origin along the unit normal */
-    SCN_P_DIFFUSE,    /* material colours and coefficients */
+    SCN_P_CENTER,  /* sphere */
+    SCN_P_RADIUS,  /* sphere */
+    SCN_P_NORMAL,  /* plane: normal (any length) */
+    SCN_P_OFFSET,  /* plane: distance from the origin along the unit normal */
+    SCN_P_DIFFUSE, /* material colours and coefficients */
     SCN_P_COLOR2,
     SCN_P_MAT_AMBIENT,
     SCN_P_SPECULAR,
@@ -54,8 +54,14 @@ enum scn_param {
 };
 
 /* What a parameter belongs to. */
-enum scn_owner { SCN_OWN_SCENE, SCN_OWN_CAMERA, SCN_OWN_LIGHT, SCN_OWN_SPHERE, SCN_OWN_PLANE,
-                 SCN_OWN_MATERIAL };
+enum scn_owner {
+    SCN_OWN_SCENE,
+    SCN_OWN_CAMERA,
+    SCN_OWN_LIGHT,
+    SCN_OWN_SPHERE,
+    SCN_OWN_PLANE,
+    SCN_OWN_MATERIAL
+};
 
 /* A parameter's name (as written after the dot in a track name), owner, number of components
  * and range: every value, given or interpolated, is clamped into [lo, hi]; the parser rejects
@@ -90,10 +96,10 @@ typedef struct scn_material {
 } scn_material;
 
 typedef struct scn_object {
-    uint8_t kind;     /* enum rt_shape_kind */
-    uint8_t material; /* index into materials */
-    int32_t center[3], radius;  /* sphere */
-    int32_t normal[3], offset;  /* plane */
+    uint8_t kind;              /* enum rt_shape_kind */
+    uint8_t material;          /* index into materials */
+    int32_t center[3], radius; /* sphere */
+    int32_t normal[3], offset; /* plane */
 } scn_object;
 
 typedef struct scn_light {

@@ -83,7 +83,8 @@ static int img_load_ppm(FILE *f, const char *path, img_rgb *out, char *err, size
     if (maxval != 255)
         return img_fail(err, errlen, "%s: PPM maxval must be 255 (8-bit)%s", path, "");
     if (w * h > IMG_MAX_PIXELS)
-        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path, "");
+        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path,
+                        "");
     size_t n = (size_t)w * (size_t)h * 3;
     /* The header promises n bytes: a file that has fewer is refused before allocating them. */
     struct stat st;
@@ -112,7 +113,8 @@ static int img_load_png(const char *path, img_rgb *out, char *err, size_t errlen
         return img_fail(err, errlen, "%s: bad PNG: %s", path, image.message);
     if ((long)image.width * (long)image.height > IMG_MAX_PIXELS) {
         png_image_free(&image);
-        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path, "");
+        return img_fail(err, errlen, "%s: image too large (more than 4096x4096 pixels)%s", path,
+                        "");
     }
     image.format = PNG_FORMAT_RGB;
     out->rgb = malloc(PNG_IMAGE_SIZE(image));
@@ -177,8 +179,8 @@ static uint8_t *img_pack(const uint32_t *pixels, int width, int height, int stri
     return rgb;
 }
 
-int img_save(const char *path, const uint32_t *pixels, int width, int height, int stride,
-             char *err, size_t errlen)
+int img_save(const char *path, const uint32_t *pixels, int width, int height, int stride, char *err,
+             size_t errlen)
 {
     if (!img_path_ok(path))
         return img_fail(err, errlen, "%s: unknown image type (use .png or .ppm)%s", path, "");

@@ -24,8 +24,7 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stat
         *cell = (uint8_t)(1 + ((i & 3) | (j & 3) << 2 | (k & 3) << 4));
         return ((i + j + k) & 1) ? tx->color2 : m->diffuse;
     }
-    default:
-        break;
+    default: break;
     }
     if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) == 0)
         return m->diffuse; /* a compiled-in scene without noise textures links no noise code */
@@ -37,8 +36,8 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stat
          * repeats every 2 in x and 4 in y, so the point can be wrapped into the noise period
          * first: the phase then stays small wherever the point lies. */
         vec3 w = rt_noise_wrap(q);
-        real phase = r_add(r_add(w.x, r_shr(w.y, 1)),
-                           r_mul(tx->turbulence, rt_turbulence(q, octaves)));
+        real phase =
+            r_add(r_add(w.x, r_shr(w.y, 1)), r_mul(tx->turbulence, rt_turbulence(q, octaves)));
         real s = r_sin(r_mul(phase, R_PI));
         return rt_palette(tx->palette, r_add(R(0.5), r_shr(s, 1)));
     }

@@ -19,8 +19,8 @@ void img_free(img_rgb *im);
 
 /* Writes 0x00RRGGBB pixels as PNG or PPM, chosen by the extension of path (.png, .ppm), through
  * a temporary file in the same folder renamed into place. Returns 0, or -1 with a reason. */
-int img_save(const char *path, const uint32_t *pixels, int width, int height, int stride,
-             char *err, size_t errlen);
+int img_save(const char *path, const uint32_t *pixels, int width, int height, int stride, char *err,
+             size_t errlen);
 
 /* Nonzero when path ends in an extension img_save can write. */
 int img_path_ok(const char *path);

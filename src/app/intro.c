@@ -9,7 +9,7 @@
  *                            log `frame=N instructions=M` for each, then the mean and worst
  *   show N                   render frame N, show it, log `shown frame=N` and keep it on the
  *                            display until stopped (lets a test grab the display)
- * Every command also takes the render settings of `render` (src/knobs.h): --depth, --mode,
+ * Every command also takes the render settings of `render` (src/scene/knobs.h): --depth, --mode,
  * --grid (4 or 8: the working storage of grids 2 and 16 does not fit the board's RAM budget),
  * --threshold, --min-contrib, --octaves; their defaults are render's. A frame is byte for byte
  * `build/rt-fixed render --size 320x240 --frame N` with the same settings.
@@ -101,10 +101,7 @@ static int intro_streq(const char *a, const char *b)
     return *a == *b;
 }
 
-static long intro_last_frame(void)
-{
-    return (long)scn_intro.duration_ms * scn_intro.fps / 1000;
-}
+static long intro_last_frame(void) { return (long)scn_intro.duration_ms * scn_intro.fps / 1000; }
 
 /* Renders the intro at time ms into frame f; returns the platform nanoseconds it took. */
 static uint64_t intro_render(const plat_frame *f, int32_t ms)
@@ -119,10 +116,7 @@ static uint64_t intro_render(const plat_frame *f, int32_t ms)
     return plat_time_ns() - t0;
 }
 
-static int32_t intro_frame_ms(long frame)
-{
-    return (int32_t)(frame * 1000 / scn_intro.fps);
-}
+static int32_t intro_frame_ms(long frame) { return (int32_t)(frame * 1000 / scn_intro.fps); }
 
 /* play: the timeline follows the clock; a slow frame skips ahead rather than slowing down. */
 static int intro_play(void)
@@ -210,8 +204,8 @@ static int intro_frames(int argc, char **argv)
                 return 2;
             }
         } else if (intro_arg(argv[i], last) < 0) {
-            intro_log2("intro: error: frame numbers are whole numbers 0..", (uint64_t)last,
-                       NULL, 0);
+            intro_log2("intro: error: frame numbers are whole numbers 0..", (uint64_t)last, NULL,
+                       0);
             return 2;
         } else {
             n++;
@@ -276,7 +270,8 @@ static int intro_take_knobs(int argc, char **argv)
         const char *expected = "needs a value";
         if (!knobs_is_option(argv[i])) {
             argv[n++] = argv[i];
-        } else if (i + 1 == argc || knobs_parse(&intro_knobs, argv[i], argv[i + 1], &expected) < 0) {
+        } else if (i + 1 == argc ||
+                   knobs_parse(&intro_knobs, argv[i], argv[i + 1], &expected) < 0) {
             intro_line l = {.n = 0};
             intro_str(&l, "intro: error: ");
             intro_str(&l, argv[i]);
@@ -307,7 +302,8 @@ int app_main(int argc, char **argv)
     rt_params p = knobs_params(&intro_knobs, 0);
     if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work) {
         intro_line l = {.n = 0};
-        intro_str(&l, "intro: error: --grid: the board's working storage holds grids 4 and 8, not ");
+        intro_str(&l,
+                  "intro: error: --grid: the board's working storage holds grids 4 and 8, not ");
         intro_num(&l, (uint64_t)p.grid);
         plat_log(l.s);
         return 2;

@@ -6,9 +6,8 @@
 /* Twelve gradients along the cube's edges, four repeated to make sixteen (one per 4-bit hash):
  * each is (gx, gy, gz) with components in {-1, 0, 1}. */
 static const int8_t noise_grad[16][3] = {
-    {1, 1, 0},  {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
-    {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
-    {1, 1, 0},  {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
 };
 
 uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
@@ -23,10 +22,7 @@ uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
     return h;
 }
 
-static real noise_term(real v, int g)
-{
-    return r_mul_sign(v, g);
-}
+static real noise_term(real v, int g) { return r_mul_sign(v, g); }
 
 /* Dot product of the corner's gradient with the offset (x, y, z) from that corner. */
 static inline __attribute__((always_inline)) real noise_dot(uint32_t h, real x, real y, real z)
@@ -85,19 +81,16 @@ static real noise_octaves(vec3 p, int octaves, int absolute)
     return sum;
 }
 
-real rt_fbm(vec3 p, int octaves)
-{
-    return noise_octaves(p, octaves, 0);
-}
+real rt_fbm(vec3 p, int octaves) { return noise_octaves(p, octaves, 0); }
 
-real rt_turbulence(vec3 p, int octaves)
-{
-    return noise_octaves(p, octaves, 1);
-}
+real rt_turbulence(vec3 p, int octaves) { return noise_octaves(p, octaves, 1); }
 
 /* Each palette: five colour stops evenly spread over [0, 1]. */
 #define NOISE_STOPS 5
-#define C(r, g, b) {R(r), R(g), R(b)}
+#define C(r, g, b) \
+    { \
+        R(r), R(g), R(b) \
+    }
 static const vec3 noise_palettes[RT_PAL_COUNT][NOISE_STOPS] = {
     [RT_PAL_MARBLE] = {C(0.92, 0.91, 0.88), C(0.85, 0.84, 0.82), C(0.62, 0.64, 0.70),
                        C(0.30, 0.33, 0.42), C(0.10, 0.11, 0.16)},
