@@ -68,7 +68,7 @@ SCENE_SRCS := src/scene/scn.c src/scene/knobs.c
 CORE_SRCS := $(TRACER_SRCS) $(SCENE_SRCS)
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app/app.c src/app/play.c src/app/frame.c src/scene/scn_parse.c src/app/image.c src/app/outpath.c \
+APP_SRCS := src/app/app.c src/app/cli.c src/app/play.c src/app/frame.c src/scene/scn_parse.c src/app/image.c src/app/outpath.c \
             platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
@@ -112,7 +112,7 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/edges.c tests/fuzz_scene.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/edges.c platform/null.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -143,7 +143,10 @@ $(eval $(call variant,san-fixed16,1,$(SAN) $(FIXED16_DEFS),,1))
 $(eval $(call variant,fuzz-float,0,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 $(eval $(call variant,fuzz-fixed,1,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 
-LIBS = -lpng -lm -lpthread $(SDL_LIBS)
+# The programs with a window (rt-float, rt-fixed: play; the intro players) link SDL2 through
+# platform/sdl.c; the tools never open one and link the null display, platform/null.c.
+TOOL_LIBS := -lpng -lm -lpthread
+LIBS = $(TOOL_LIBS) $(SDL_LIBS)
 
 $(BUILD)/rt-float: $(CORE_OBJS_float) $(APP_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
@@ -155,7 +158,7 @@ $(BUILD)/rt-fixed16: $(CORE_OBJS_fixed16) $(APP_OBJS_fixed16) $(FIXMATH_LIB_fixe
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
 $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/app/image.o $(BUILD)/obj/float/src/app/outpath.o
-	$(CC) $(OPT) -o $@ $^ $(LIBS)
+	$(CC) $(OPT) -o $@ $^ $(TOOL_LIBS)
 
 # The scene compiler runs at build time, so it is built from the float objects.
 $(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scene/scn_parse.o \
@@ -164,9 +167,11 @@ $(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src
 	$(CC) $(OPT) -o $@ $^ -lm
 
 # The subsampling bound (tests/bench_subsample.sh): float, like the reference it measures.
-$(BUILD)/rt-edges: $(BUILD)/obj/float/src/tools/edges.o $(BUILD)/obj/float/src/scene/scn_parse.o \
-                   $(BUILD)/obj/float/src/app/outpath.o $(CORE_OBJS_float)
-	$(CC) $(OPT) -o $@ $^ -lm
+# The command line of render (src/app/cli.c) over the headless platform and the null display.
+EDGES_SRCS := src/tools/edges.c src/scene/scn_parse.c src/app/cli.c src/app/image.c src/app/outpath.c \
+              platform/headless.c platform/threads.c platform/null.c
+$(BUILD)/rt-edges: $(patsubst %.c,$(BUILD)/obj/float/%.o,$(EDGES_SRCS)) $(CORE_OBJS_float)
+	$(CC) $(OPT) -o $@ $^ $(TOOL_LIBS)
 
 $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
 	@mkdir -p $(@D)
@@ -196,9 +201,10 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # The intro in a window and nothing else (src/app/player.c over play.c). Built for size: unused
 # functions dropped, no unwind tables, the hot tracer at -O2 and the rest at -Os.
 PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/subsample.c src/core/noise.c src/core/texture.c
-PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
+PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
+               src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
-PLAYER_CFLAGS := $(BASE_CFLAGS) -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
+PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none
 PLAYER_LIMIT := 65536
@@ -213,9 +219,15 @@ $$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player
 $$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $(PLAYER_CFLAGS) -Os $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
-$(BUILD)/intro-$(1): $$(PLAYER_OBJS_$(1)) $(3)
+$(BUILD)/intro-$(1): $$(PLAYER_OBJS_$(1)) $$(if $(3),$(BUILD)/obj/player-$(1)/libfixmath.a)
 	$$(CC) $(PLAYER_LDFLAGS) -o $$@ $$^ $$(LIBS)
 	@strip -o $$@.stripped $$@ && printf 'player %s: %d bytes stripped (limit %d)\n' $$@ $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) && rm -f $$@.stripped
+# libfixmath as rt-fixed has it (-O2), one section per function: the unused ones are dropped.
+$(BUILD)/obj/player-$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) -std=c11 $(OPT) -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+$(BUILD)/obj/player-$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/player-$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $$@ && ar rcs $$@ $$^
 -include $$(PLAYER_OBJS_$(1):.o=.d)
 endef
 $(eval $(call player,fixed,1,$(BUILD)/obj/fixed/libfixmath.a))

@@ -91,7 +91,7 @@ $(($4 + $(sed -n 's/^rays_refract=//p' <<<"$s")))"
   # split criteria see, plus the grid's corners (src/tools/edges.c).
   bsum=0 esum=0
   for t in $times; do
-    b=$(build/rt-edges "$scene" "$size" "$t")
+    b=$(build/rt-edges --scene "$scene" --size "$size" --time "$t")
     bsum=$(awk -v a="$bsum" -v b="$(sed -n 's/^bound_x_samples=//p' <<<"$b")" 'BEGIN { print a + b }')
     esum=$(awk -v a="$esum" -v b="$(sed -n 's/^edge_share=//p' <<<"$b")" 'BEGIN { print a + b }')
   done

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "knobs.h"
 #include "noise.h"
 #include "rt.h"
 #include "scn.h"
@@ -43,12 +44,14 @@ static uint64_t fz_hash(const uint8_t *p, size_t n)
 static void fz_render(uint64_t h)
 {
     static const int grids[4] = {2, 4, 8, 16};
+    static const knobs defaults = KNOBS_DEFAULTS;
+    const rt_params d = knobs_params(&defaults, 0);
     rt_params p = {
         .depth = (h & 1) ? fz_scene.depth : (int)((h >> 1) % (RT_MAX_DEPTH + 1)),
-        .min_contrib = (h & 16) ? 0 : RT_DEFAULT_MIN_CONTRIB,
+        .min_contrib = (h & 16) ? 0 : d.min_contrib,
         .mode = (h & 32) ? RT_MODE_FULL : RT_MODE_ADAPTIVE,
         .grid = grids[(h >> 6) & 3],
-        .threshold = (h & 256) ? 0 : RT_DEFAULT_THRESHOLD,
+        .threshold = (h & 256) ? 0 : d.threshold,
         .octaves = (int)((h >> 40) % (RT_NOISE_MAX_OCTAVES + 1)), /* 0: the scene's */
     };
     unsigned long need = rt_render_work_size(&p, FZ_W);

@@ -87,6 +87,19 @@ for real in fixed float; do
   fi
 done
 
+# One option table (src/app/cli.c): the intro player and `rt-* play` take the same command line,
+# here in the --opt=value form with a size written WXH, and show the same frame.
+for real in fixed float; do
+  args=(--size=160X120 --threads=2 --frames=3)
+  if xrun "$B/intro-$real" "${args[@]}" --screenshot="$T/eq-intro-$real.png" >"$T/eq-intro-$real.log" 2>&1 &&
+     xrun "$B/rt-$real" play "${args[@]}" --screenshot="$T/eq-play-$real.png" >"$T/eq-play-$real.log" 2>&1 &&
+     cmp -s "$T/eq-intro-$real.png" "$T/eq-play-$real.png"; then
+    pass "intro-$real and rt-$real play ${args[*]}: the same command line, the same screenshot"
+  else
+    fail "intro-$real vs rt-$real play ${args[*]}: $(tail -1 "$T/eq-intro-$real.log") / $(tail -1 "$T/eq-play-$real.log")"
+  fi
+done
+
 # Threads: 1 thread and several give the same bytes, both builds, both modes, several frames.
 for real in fixed float; do
   bad=""

@@ -276,15 +276,24 @@ while IFS= read -r line; do
   eval "args=(${line%% => *})"
   case ${args[0]} in
     RT) progs="rt-fixed rt-float san-fixed/rt san-float/rt" ;;
+    PLAYERS) progs="rt-fixed:play rt-float:play san-fixed/rt:play intro-fixed intro-float" ;;
     *) progs=${args[0]} ;;
   esac
-  bad=""
-  for p in $progs; do
-    err=$(cd "$W" && "$TOP/$B/$p" "${args[@]:1}" 2>&1 >/dev/null </dev/null)
+  bad="" first=""
+  for pc in $progs; do
+    p=${pc%%:*} cmd=()
+    [[ $pc == *:* ]] && cmd=("${pc#*:}")
+    err=$(cd "$W" && "$TOP/$B/$p" "${cmd[@]}" "${args[@]:1}" 2>&1 >/dev/null </dev/null)
     rc=$?
     if [ $rc -ne 2 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || [[ "$err" != "$(basename "$p"): "* ]] ||
        [[ "$err" != *"$want"* ]]; then
       bad="$bad $p: exit $rc: $err;"
+    fi
+    # PLAYERS: word for word the same message, but for the program's name
+    if [ "${args[0]}" = PLAYERS ]; then
+      msg=${err#"$(basename "$p"): "} msg=${msg//"$(basename "$p")"/PROG}
+      [ -z "$first" ] && first=$msg
+      [ "$msg" = "$first" ] || bad="$bad $p says '$msg', not '$first';"
     fi
   done
   now=$(listing)
@@ -296,7 +305,26 @@ while IFS= read -r line; do
     fail "bad command line '${line%% => *}' (want exit 2, one line containing '$want'):$bad"
   fi
 done <tests/bad_cli.txt
-pass "bad command lines: the $ncli cases of tests/bad_cli.txt, each one line and exit 2 (render cases from both builds and both sanitized builds), no file left behind"
+pass "bad command lines: the $ncli cases of tests/bad_cli.txt, each one line and exit 2 (render cases from both builds and both sanitized builds; player cases word for word alike from rt-* play and the intro players), no file left behind"
+# One grammar: `--opt=value` is `--opt value` (here with a size written WXH), and the players
+# accept the same command lines: each option is taken before --help ends the run.
+eq=$($B/rt-fixed render --size=40X30 --time=2 --checksum 2>&1)
+sp=$($B/rt-fixed render --size 40x30 --time 2 --checksum 2>&1)
+if [[ $sp == "time_ms=2000 fnv64="* ]] && [ "$eq" = "$sp" ]; then
+  pass "render --size=40X30 --time=2 --checksum = render --size 40x30 --time 2 --checksum: $sp"
+else
+  fail "render --size=40X30 --time=2 --checksum: '$eq', want '$sp'"
+fi
+bad=""
+for args in "--size=64X48 --threads=2 --frames=3" "--size 64x48 --threads 1 --frames 1 --screenshot $W/ok.png" \
+            "--frames=9 --screenshot=$W/ok.ppm --size=4096x1"; do
+  for p in "rt-fixed play" "rt-float play" intro-fixed intro-float; do
+    # shellcheck disable=SC2086  # words on purpose
+    out=$($B/$p $args --help 2>&1 </dev/null) && grep -q "^usage:" <<<"$out" || bad="$bad $p $args: $out;"
+  done
+done
+[ -z "$bad" ] && [ ! -e "$W/ok.png" ] && pass "the players accept the same command lines (rt-fixed/rt-float play, intro-fixed/intro-float, each option taken before --help)" ||
+  fail "players' command lines:$bad"
 # A write that fails once rendering is done (here: a file size limit) gets exit status 1 and
 # leaves neither the file nor its temporary file behind, in single- and multi-frame renders.
 for args in "-o $W/limit.ppm" "--frames 0-2 -o $W/limit-%d.ppm"; do
@@ -450,8 +478,8 @@ fi
 # and the bound it prints is pixels / points that must be traced.
 printf '%s\n' "camera eye 0 6 1 at 0 0 0" "light l pos 0 5 0 color 1 1 1" "material m specular 0" \
   "plane p material m normal 0 1 0 offset 0" >"$T/flat.scene"
-flat=$($B/rt-edges "$T/flat.scene" 320x240 0)
-demo=$($B/rt-edges scenes/demo.scene 160x120 4)
+flat=$($B/rt-edges --scene "$T/flat.scene" --size 320x240 --time 0)
+demo=$($B/rt-edges --scene=scenes/demo.scene --size=160x120 --time=4)
 kv() { sed -n "s/^$1=//p" <<<"$2"; }
 if [ "$(kv edge_pixels "$flat")" = 0 ] && [ "$(kv must_trace "$flat")" = 1271 ] &&
    [ "$(kv edge_pixels "$demo")" -gt 1000 ] && [ "$(kv must_trace "$demo")" -ge "$(kv edge_pixels "$demo")" ] &&

@@ -9,7 +9,12 @@
 
 #include <cmocka.h>
 
+#include "knobs.h"
 #include "rt.h"
+
+/* The default threshold of the programs (knobs.h). */
+static const knobs ts_knobs = KNOBS_DEFAULTS;
+#define TS_THRESHOLD (knobs_params(&ts_knobs, 0).threshold)
 
 #if REAL_FIXED
 static real from_d(double x) { return (real)llround(x * 65536.0); }
@@ -229,7 +234,7 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
     const rt_params pa = {
-        .depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = RT_DEFAULT_THRESHOLD};
+        .depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
     rt_stats st = {0}, sa = {0};
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
@@ -339,10 +344,8 @@ static void test_sizes(void **state)
             rt_view v;
             rt_view_init(&v, &s.camera, w, h);
             const rt_params pf = {.depth = 2, .mode = RT_MODE_FULL};
-            const rt_params pa = {.depth = 2,
-                                  .mode = RT_MODE_ADAPTIVE,
-                                  .grid = grid,
-                                  .threshold = RT_DEFAULT_THRESHOLD};
+            const rt_params pa = {
+                .depth = 2, .mode = RT_MODE_ADAPTIVE, .grid = grid, .threshold = TS_THRESHOLD};
             rt_stats st = {0};
             assert_true(rt_render_work_size(&pa, w) <= sizeof work);
             for (int i = 0; i < w * h; i++)
@@ -398,7 +401,7 @@ static void test_bands(void **state)
             for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
                 int w = sizes[n][0], h = sizes[n][1];
                 const rt_params p = {
-                    .depth = 2, .mode = mode, .grid = grids[g], .threshold = RT_DEFAULT_THRESHOLD};
+                    .depth = 2, .mode = mode, .grid = grids[g], .threshold = TS_THRESHOLD};
                 rt_view v;
                 rt_view_init(&v, &s.camera, w, h);
                 rt_stats st = {0};

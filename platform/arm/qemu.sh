@@ -37,7 +37,7 @@ timeout_s=${QEMU_TIMEOUT:-600}
 case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
 
 for a in "$@"; do
-  case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
+  case "$a" in *[!A-Za-z0-9/_.=-]*|'') die "argument '$a': use letters, digits and / _ . = - only" ;; esac
 done
 # The render settings go to the board first (it checks their values); the rest stay in order.
 settings=()
@@ -48,6 +48,9 @@ while [ $# -gt 0 ]; do
       [ $# -ge 2 ] || die "$1 needs a value"
       settings+=("$1" "$2")
       shift 2 ;;
+    --depth=*|--mode=*|--grid=*|--threshold=*|--min-contrib=*|--octaves=*)
+      settings+=("$1")
+      shift ;;
     -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves)" ;;
     *) args+=("$1"); shift ;;
   esac

@@ -58,6 +58,16 @@ static void frame_worker(void *ctx, int worker)
     }
 }
 
+_Static_assert(sizeof(rt_stats) % sizeof(uint32_t) == 0, "rt_stats: uint32_t counters only");
+
+void frame_sums_add(frame_sums *t, const rt_stats *s)
+{
+    uint32_t c[FRAME_NSTATS];
+    memcpy(c, s, sizeof c);
+    for (size_t i = 0; i < FRAME_NSTATS; i++)
+        t->n[i] += c[i];
+}
+
 void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, const uint8_t *traced)
 {
     for (int y = 0; y < height; y++)
@@ -67,7 +77,7 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,
-                  uint32_t *pixels, int stride, rt_stats *stats, uint8_t *traced)
+                  uint32_t *pixels, int stride, frame_sums *sums, uint8_t *traced)
 {
     static frame_job j; /* one frame at a time; too big for the stack */
     memset(&j, 0, sizeof j);
@@ -87,19 +97,6 @@ void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, cons
     if (traced)
         memset(traced, 0, (size_t)v->width * (size_t)v->height);
     plat_parallel(fc->threads, frame_worker, &j);
-    for (int w = 0; w < fc->threads; w++) {
-        const rt_stats *t = &j.stats[w];
-        stats->rays_primary += t->rays_primary;
-        stats->rays_shadow += t->rays_shadow;
-        stats->rays_reflect += t->rays_reflect;
-        stats->rays_refract += t->rays_refract;
-        stats->shadow_tests += t->shadow_tests;
-        stats->noise_octaves += t->noise_octaves;
-        for (int l = 0; l < RT_GRID_LEVELS; l++) {
-            stats->squares[l] += t->squares[l];
-            stats->split[l] += t->split[l];
-        }
-        for (int r = 0; r < 5; r++)
-            stats->split_by[r] += t->split_by[r];
-    }
+    for (int w = 0; w < fc->threads; w++)
+        frame_sums_add(sums, &j.stats[w]);
 }

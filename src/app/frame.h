@@ -2,6 +2,8 @@
 #ifndef FIXRAY_FRAME_H
 #define FIXRAY_FRAME_H
 
+#include <stddef.h>
+
 #include "platform.h"
 #include "rt.h"
 
@@ -12,6 +14,19 @@ typedef struct frame_ctx {
     void *work[PLAT_MAX_THREADS];
 } frame_ctx;
 
+/* Counters of rt_stats summed over threads and frames, 64 bits each: n[i] sums the i-th
+ * uint32_t of rt_stats (every field of rt_stats is a uint32_t counter or an array of them). */
+#define FRAME_NSTATS (sizeof(rt_stats) / sizeof(uint32_t))
+typedef struct frame_sums {
+    unsigned long long n[FRAME_NSTATS];
+} frame_sums;
+
+/* The sum of counter `field` of rt_stats (an array's element i: FRAME_SUM(t, squares, i)). */
+#define FRAME_SUM(t, field, i) ((t)->n[offsetof(rt_stats, field) / sizeof(uint32_t) + (i)])
+
+/* Adds every counter of s to *t. */
+void frame_sums_add(frame_sums *t, const rt_stats *s);
+
 /* Sets up fc for `threads` threads (1..PLAT_MAX_THREADS) and frames `width` wide, any grid.
  * Returns 0, or -1 when out of memory. */
 int frame_init(frame_ctx *fc, int threads, int width);
@@ -19,9 +34,9 @@ int frame_init(frame_ctx *fc, int threads, int width);
 void frame_free(frame_ctx *fc);
 
 /* rt_render on fc's threads: the same bytes whatever the number of threads. The rays counted in
- * *stats (added to) include the corner rows that neighbouring bands both trace. */
+ * *sums (added to) include the corner rows that neighbouring bands both trace. */
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,
-                  uint32_t *pixels, int stride, rt_stats *stats, uint8_t *traced);
+                  uint32_t *pixels, int stride, frame_sums *sums, uint8_t *traced);
 
 /* Paints white every pixel of a width x height frame whose byte in `traced` (width per row) is
  * set: the points adaptive subsampling traced (--show-samples, the player's S key). */

@@ -83,7 +83,7 @@ static void intro_log2(const char *a, uint64_t va, const char *b, uint64_t vb)
 static long intro_arg(const char *s, long max)
 {
     long v;
-    return knobs_int(s, NULL, 0, max, &v) == 0 ? v : -1;
+    return knobs_number(s, -1, 0, 0, max, &v) == KNOBS_NUM_OK ? v : -1;
 }
 
 static unsigned intro_len(const char *s)
@@ -261,31 +261,48 @@ static int intro_show(int argc, char **argv)
         plat_time_ns(); /* the board has nothing else to do */
 }
 
-/* Takes the render settings (--depth N, ...) out of argv, keeping the other arguments in
- * order; returns how many those are, or -1 after logging what is wrong. */
+/* Takes the render settings out of argv, in the grammar of the desktop programs (`--depth N`
+ * or `--depth=N`, each at most once), keeping the other arguments in order; returns how many
+ * those are, or -1 after logging what is wrong. */
 static int intro_take_knobs(int argc, char **argv)
 {
     int n = 0;
+    unsigned given = 0;
     for (int i = 0; i < argc; i++) {
-        const char *expected = "needs a value";
-        if (!knobs_is_option(argv[i])) {
+        char name[24];
+        const char *v = 0, *expected = "needs a value";
+        int k = 0;
+        /* the name, before any '=' (too long: no setting's name) */
+        while (argv[i][k] && argv[i][k] != '=' && k < (int)sizeof name - 1)
+            name[k] = argv[i][k], k++;
+        name[k] = '\0';
+        if (argv[i][k] == '=')
+            v = argv[i] + k + 1;
+        int idx = argv[i][k] == '=' || !argv[i][k] ? knobs_index(name) : -1;
+        if (idx < 0) {
             argv[n++] = argv[i];
-        } else if (i + 1 == argc ||
-                   knobs_parse(&intro_knobs, argv[i], argv[i + 1], &expected) < 0) {
+            continue;
+        }
+        if (!v && i + 1 < argc)
+            v = argv[++i];
+        if (given & (1u << idx))
+            expected = "is given more than once", v = 0;
+        else if (v && knobs_parse(&intro_knobs, name, v, &expected) >= 0)
+            expected = 0;
+        given |= 1u << idx;
+        if (expected) {
             intro_line l = {.n = 0};
             intro_str(&l, "intro: error: ");
-            intro_str(&l, argv[i]);
+            intro_str(&l, name);
             intro_str(&l, ": ");
             intro_str(&l, expected);
-            if (i + 1 < argc) {
+            if (v) {
                 intro_str(&l, ", got '");
-                intro_str(&l, argv[i + 1]);
+                intro_str(&l, v);
                 intro_str(&l, "'");
             }
             plat_log(l.s);
             return -1;
-        } else {
-            i++;
         }
     }
     return n;

@@ -127,7 +127,7 @@ int play_run(const play_opts *o)
             p.depth = scene.depth;
         rt_view view;
         rt_view_init(&view, &scene.camera, o->width, o->height);
-        rt_stats st = {0};
+        frame_sums st = {0};
         uint64_t t0 = plat_time_ns();
         frame_render(&fc, &scene, &view, &p, f.pixels, f.stride, &st, show ? traced : NULL);
         uint64_t dt = plat_time_ns() - t0;

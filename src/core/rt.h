@@ -176,11 +176,6 @@ typedef struct rt_params {
                          0 = every texture's own (the scene's) */
 } rt_params;
 
-/* Defaults of the command line (see README). */
-#define RT_DEFAULT_GRID 8
-#define RT_DEFAULT_THRESHOLD R(0.0625)
-#define RT_DEFAULT_MIN_CONTRIB R(0.01)
-
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
     uint32_t shadow_tests;            /* object intersection tests made by shadow rays */

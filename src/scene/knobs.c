@@ -12,56 +12,56 @@ static int knobs_eq(const char *a, const char *b)
     return *a == *b;
 }
 
-int knobs_int(const char *s, const char **end, long lo, long hi, long *out)
+int knobs_scan(const char *s, int len, knobs_num *n)
 {
-    long v = 0;
-    const char *p = s;
-    if (*p < '0' || *p > '9')
-        return -1;
-    while (*p >= '0' && *p <= '9') {
-        v = v * 10 + (*p - '0');
-        if (v > hi)
-            return -1;
-        p++;
+    const char *e = s;
+    if (len < 0)
+        while (*e)
+            e++;
+    else
+        e = s + len;
+    int digits = 0;
+    *n = (knobs_num){.frac_pow10 = 1};
+    if (s < e && *s == '-') {
+        n->neg = 1;
+        s++;
     }
-    if (v < lo)
-        return -1;
-    if (end)
-        *end = p;
-    else if (*p)
-        return -1;
-    *out = v;
-    return 0;
+    for (; s < e && *s >= '0' && *s <= '9'; s++, digits++)
+        n->whole = n->whole < KNOBS_BIG / 10 ? n->whole * 10 + (*s - '0') : KNOBS_BIG;
+    if (s < e && *s == '.') {
+        for (s++; s < e && *s >= '0' && *s <= '9'; s++, n->decimals++)
+            if (n->decimals < 9) {
+                n->frac = n->frac * 10 + (*s - '0');
+                n->frac_pow10 *= 10;
+            }
+        if (n->decimals == 0)
+            return -1;
+    }
+    return digits > 0 && s == e ? 0 : -1;
 }
 
-int knobs_decimal(const char *s, int decimals, long max, long *out)
+int knobs_number(const char *s, int len, int decimals, long lo, long hi, long *out)
 {
-    const char *p;
-    long whole, frac = 0, scale = 1;
+    knobs_num n;
+    if (knobs_scan(s, len, &n) != 0)
+        return KNOBS_NUM_SYNTAX;
+    if (n.decimals > decimals)
+        return KNOBS_NUM_DECIMALS;
+    long scale = 1;
     for (int i = 0; i < decimals; i++)
         scale *= 10;
-    if (knobs_int(s, &p, 0, max / scale, &whole) != 0)
-        return -1;
-    if (*p == '.') {
-        int digits = 0;
-        p++;
-        while (*p >= '0' && *p <= '9' && digits < decimals) {
-            frac = frac * 10 + (*p - '0');
-            digits++;
-            p++;
-        }
-        if (digits == 0 || *p)
-            return -1;
-        while (digits++ < decimals)
-            frac *= 10;
-    } else if (*p) {
-        return -1;
-    }
-    long total = whole * scale + frac;
-    if (total > max)
-        return -1;
-    *out = total;
-    return 0;
+    long bound = (hi > -lo ? hi : -lo) / scale; /* beyond it: out of range, before overflow */
+    if (n.whole > bound)
+        return KNOBS_NUM_RANGE;
+    long frac = n.frac;
+    for (int i = n.decimals; i < decimals; i++)
+        frac *= 10;
+    long v = n.whole * scale + frac;
+    v = n.neg ? -v : v;
+    if (v < lo || v > hi)
+        return KNOBS_NUM_RANGE;
+    *out = v;
+    return KNOBS_NUM_OK;
 }
 
 /* The numeric settings: option, what its value must be, bounds (in 1/10^decimals), and where
@@ -86,6 +86,8 @@ static const struct knobs_opt {
 };
 #define KNOBS_NOPTS (int)(sizeof knobs_table / sizeof *knobs_table)
 
+_Static_assert(KNOBS_NOPTS + 1 == KNOBS_COUNT, "KNOBS_COUNT: the table and --mode");
+
 /* Index of option opt in knobs_table, KNOBS_NOPTS for --mode, -1 for any other. */
 static int knobs_find(const char *opt)
 {
@@ -96,6 +98,8 @@ static int knobs_find(const char *opt)
 }
 
 int knobs_is_option(const char *opt) { return knobs_find(opt) >= 0; }
+
+int knobs_index(const char *opt) { return knobs_find(opt); }
 
 int knobs_parse(knobs *k, const char *opt, const char *val, const char **expected)
 {
@@ -116,7 +120,7 @@ int knobs_parse(knobs *k, const char *opt, const char *val, const char **expecte
     const struct knobs_opt *o = &knobs_table[i];
     *expected = o->expected;
     /* grid: a power of two */
-    if (knobs_decimal(val, o->decimals, o->hi, &n) != 0 || n < o->lo ||
+    if (knobs_number(val, -1, o->decimals, o->lo, o->hi, &n) != KNOBS_NUM_OK ||
         (o->field == offsetof(knobs, grid) && (n & (n - 1)) != 0))
         return -1;
     *(int32_t *)(void *)((char *)k + o->field) = (int32_t)n;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "knobs.h"
 #include "noise.h"
 
 /* Where texture coordinates may reach before Q16.16 runs out: |point| x scale must stay below
@@ -88,59 +89,34 @@ void scn_format_q16(int32_t v, char *buf)
     }
 }
 
+/* The numbers of scene files have the syntax of the command line's (knobs_scan: an optional
+ * '-', digits, optionally '.' and digits), and the same range rules. */
+
 /* A decimal number as Q16.16, rounded to nearest; magnitudes of 32768 and more saturate
  * (and then fail every range check). */
 static int ps_number(ps_state *ps, ps_tok t, const char *what, int32_t *out)
 {
-    const char *s = t.s, *e = t.s + t.len;
-    int neg = 0;
-    if (s < e && *s == '-') {
-        neg = 1;
-        s++;
-    }
-    int64_t whole = 0, frac = 0, pow10 = 1;
-    int digits = 0;
-    while (s < e && *s >= '0' && *s <= '9') {
-        if (whole < 100000)
-            whole = whole * 10 + (*s - '0');
-        s++;
-        digits++;
-    }
-    if (s < e && *s == '.') {
-        s++;
-        int fd = 0;
-        while (s < e && *s >= '0' && *s <= '9') {
-            if (fd < 9) {
-                frac = frac * 10 + (*s - '0');
-                pow10 *= 10;
-            }
-            fd++;
-            s++;
-        }
-        if (fd == 0)
-            digits = 0;
-    }
-    if (digits == 0 || s != e)
+    knobs_num n;
+    if (knobs_scan(t.s, t.len, &n) != 0)
         return PS_FAIL(ps, t.s, "%s: '%.*s' is not a number", what, t.len, t.s);
-    int64_t q = whole * SCN_ONE + (frac * 2 * SCN_ONE + pow10) / (2 * pow10);
+    int64_t q = (int64_t)n.whole * SCN_ONE +
+        ((int64_t)n.frac * 2 * SCN_ONE + n.frac_pow10) / (2 * (int64_t)n.frac_pow10);
     if (q > INT32_MAX)
         q = INT32_MAX;
-    *out = (int32_t)(neg ? -q : q);
+    *out = (int32_t)(n.neg ? -q : q);
     return 0;
 }
 
-/* A whole number in [lo, hi]. */
+/* A whole number in [lo, hi]: "-3" and "5000" are both numbers out of range, "1.5" and "x" are
+ * not whole numbers. */
 static int ps_int(ps_state *ps, ps_tok t, const char *what, long lo, long hi, int32_t *out)
 {
-    long v = 0;
-    for (int i = 0; i < t.len; i++) {
-        if (t.s[i] < '0' || t.s[i] > '9')
-            return PS_FAIL(ps, t.s, "%s: '%.*s' is not a whole number", what, t.len, t.s);
-        if (v <= hi)
-            v = v * 10 + (t.s[i] - '0');
-    }
-    if (t.len == 0 || v < lo || v > hi)
+    long v;
+    int r = knobs_number(t.s, t.len, 0, lo, hi, &v);
+    if (r == KNOBS_NUM_RANGE)
         return PS_FAIL(ps, t.s, "%s: %.*s is out of range (%ld .. %ld)", what, t.len, t.s, lo, hi);
+    if (r != KNOBS_NUM_OK)
+        return PS_FAIL(ps, t.s, "%s: '%.*s' is not a whole number", what, t.len, t.s);
     *out = (int32_t)v;
     return 0;
 }
@@ -148,36 +124,15 @@ static int ps_int(ps_state *ps, ps_tok t, const char *what, long lo, long hi, in
 /* Seconds with at most three decimals, in 0 .. SCN_MAX_DURATION_MS, as milliseconds. */
 static int ps_time(ps_state *ps, ps_tok t, const char *what, int32_t *ms)
 {
-    const char *s = t.s, *e = t.s + t.len;
-    long whole = 0, frac = 0;
-    int digits = 0, fd = 0;
-    while (s < e && *s >= '0' && *s <= '9') {
-        if (whole <= SCN_MAX_DURATION_MS / 1000)
-            whole = whole * 10 + (*s - '0');
-        s++;
-        digits++;
-    }
-    if (s < e && *s == '.') {
-        s++;
-        while (s < e && *s >= '0' && *s <= '9') {
-            if (fd < 3)
-                frac = frac * 10 + (*s - '0');
-            fd++;
-            s++;
-        }
-        if (fd == 0)
-            digits = 0;
-    }
-    if (digits == 0 || s != e)
+    long v;
+    int r = knobs_number(t.s, t.len, 3, 0, SCN_MAX_DURATION_MS, &v);
+    if (r == KNOBS_NUM_SYNTAX)
         return PS_FAIL(ps, t.s, "%s: '%.*s' is not a time in seconds", what, t.len, t.s);
-    if (fd > 3)
+    if (r == KNOBS_NUM_DECIMALS)
         return PS_FAIL(ps, t.s,
                        "%s: '%.*s' has more than 3 decimals (times are in whole milliseconds)",
                        what, t.len, t.s);
-    for (; fd < 3; fd++)
-        frac *= 10;
-    long v = whole * 1000 + frac;
-    if (v > SCN_MAX_DURATION_MS)
+    if (r == KNOBS_NUM_RANGE)
         return PS_FAIL(ps, t.s, "%s: %.*s s is out of range (0 .. %d s)", what, t.len, t.s,
                        SCN_MAX_DURATION_MS / 1000);
     *ms = (int32_t)v;

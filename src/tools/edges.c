@@ -3,82 +3,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "knobs.h"
+#include "cli.h"
+#include "platform.h"
 #include "rt.h"
 #include "scn_parse.h"
 
-static const char *ed_name = "rt-edges";
-
-static void ed_usage(FILE *f)
+int app_main(int argc, char **argv)
 {
-    fprintf(f,
-            "usage: %s SCENE WxH SECONDS [--grid N] [--threshold X] [--depth N]\n"
-            "          [--min-contrib X] [--octaves N]\n"
-            "  Traces every pixel of the scene at that moment (float; the settings as for\n"
-            "  rt-float render, defaults alike) and counts the pixels that are a corner of some\n"
-            "  1x1 cell whose four corners the split criteria tell apart (object, light state,\n"
-            "  secondary objects, contribution beyond --threshold). Adaptive subsampling must\n"
-            "  trace each of them, besides the --grid corners, to resolve every such edge to the\n"
-            "  pixel: pixels / that count bounds its x_samples. Prints key=value lines.\n",
-            ed_name);
-}
-
-/* One line and exit status 2. */
-static int ed_error(const char *what, const char *value)
-{
-    fprintf(stderr, "%s: %s, got '%s' (see %s --help)\n", ed_name, what, value, ed_name);
-    return 2;
-}
-
-int main(int argc, char **argv)
-{
-    const char *pos[3] = {0};
-    int npos = 0;
-    knobs k = KNOBS_DEFAULTS;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *expected = "";
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            ed_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--mode")) {
-            fprintf(stderr, "%s: --mode: the bound is for adaptive subsampling (see %s --help)\n",
-                    ed_name, ed_name);
-            return 2;
-        } else if (knobs_is_option(a)) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "%s: %s: needs a value\n", ed_name, a);
-                return 2;
-            }
-            const char *v = argv[++i];
-            if (knobs_parse(&k, a, v, &expected) < 0) {
-                char what[96];
-                snprintf(what, sizeof what, "%s: %s", a, expected);
-                return ed_error(what, v);
-            }
-        } else if (a[0] == '-' && a[1] != 0) {
-            fprintf(stderr, "%s: unknown option '%s' (see %s --help)\n", ed_name, a, ed_name);
-            return 2;
-        } else if (npos < 3) {
-            pos[npos++] = a;
-        } else {
-            fprintf(stderr, "%s: one scene, one size and one time, not '%s'\n", ed_name, a);
-            return 2;
-        }
-    }
-    if (npos != 3) {
-        fprintf(stderr, "%s: want SCENE WxH SECONDS (see %s --help)\n", ed_name, ed_name);
-        return 2;
-    }
-    long lw, lh, ms;
-    const char *x;
-    if (knobs_int(pos[1], &x, 1, 4096, &lw) != 0 || *x != 'x' ||
-        knobs_int(x + 1, NULL, 1, 4096, &lh) != 0)
-        return ed_error("size: want WxH, each side 1..4096", pos[1]);
-    if (knobs_decimal(pos[2], 3, SCN_MAX_DURATION_MS, &ms) != 0)
-        return ed_error("time: want seconds, at most 3 decimals, 0..3600", pos[2]);
+    const char *ed_name = plat_program();
+    cli_opts c = cli_defaults(CLI_EDGES);
+    int rc = cli_parse(CLI_EDGES, argc - 1, argv + 1, &c);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc; /* -1: --help, --version */
+    if (!c.scene)
+        return cli_error("--scene", "is required: the scene to measure", NULL);
+    knobs k = c.k;
+    long ms = c.time_ms;
+    char time[16];
+    snprintf(time, sizeof time, "%ld.%03ld", ms / 1000, ms % 1000);
     static scn_file file;
     char err[640];
-    if (scn_load(pos[0], &file, err, sizeof err) != 0) {
+    if (scn_load(c.scene, &file, err, sizeof err) != 0) {
         fprintf(stderr, "%s: %s\n", ed_name, err);
         return 2;
     }
@@ -86,11 +31,11 @@ int main(int argc, char **argv)
     rt_view view;
     scn_eval(&file.desc, (int32_t)ms, &scene);
     if (!rt_view_ok(&scene.camera)) {
-        fprintf(stderr, "%s: %s: at %s s the camera has no view direction\n", ed_name, pos[0],
-                pos[2]);
+        fprintf(stderr, "%s: %s: at %s s the camera has no view direction\n", ed_name, c.scene,
+                time);
         return 2;
     }
-    int w = (int)lw, h = (int)lh;
+    int w = c.width, h = c.height;
     rt_view_init(&view, &scene.camera, w, h);
     rt_params p = knobs_params(&k, scene.depth);
     int grid = p.grid;
@@ -123,7 +68,7 @@ int main(int argc, char **argv)
     long pixels = (long)w * h;
     printf("scene=%s\nsize=%dx%d\ntime=%s\npixels=%ld\nedge_pixels=%ld\nedge_share=%.4f\n"
            "must_trace=%ld\nbound_x_samples=%.2f\n",
-           pos[0], w, h, pos[2], pixels, edge, (double)edge / pixels, need,
+           c.scene, w, h, time, pixels, edge, (double)edge / pixels, need,
            (double)pixels / (double)need);
     free(s);
     free(must);

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "knobs.h"
 #include "rt.h"
 #include "scn.h"
 
@@ -11,9 +12,8 @@ extern const scn_desc scn_compiled;
 /* A whole number in [lo, hi], or -1. */
 static long still_arg(const char *s, long lo, long hi)
 {
-    char *end;
-    long v = strtol(s, &end, 10);
-    return (*s && !*end && v >= lo && v <= hi) ? v : -1;
+    long v;
+    return knobs_number(s, -1, 0, lo, hi, &v) == KNOBS_NUM_OK ? v : -1;
 }
 
 int main(int argc, char **argv)
@@ -31,11 +31,8 @@ int main(int argc, char **argv)
     }
     static rt_scene scene;
     scn_eval(&scn_compiled, (int32_t)ms, &scene);
-    rt_params p = {.depth = scene.depth,
-                   .min_contrib = RT_DEFAULT_MIN_CONTRIB,
-                   .mode = RT_MODE_ADAPTIVE,
-                   .grid = RT_DEFAULT_GRID,
-                   .threshold = RT_DEFAULT_THRESHOLD};
+    static const knobs defaults = KNOBS_DEFAULTS; /* render's */
+    rt_params p = knobs_params(&defaults, scene.depth);
     rt_view v;
     rt_view_init(&v, &scene.camera, (int)w, (int)h);
     uint32_t *pixels = malloc((size_t)w * (size_t)h * sizeof *pixels);
