@@ -88,6 +88,9 @@ static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
 /* A Q16.16 integer (65536 = 1.0) as a real: exact. */
 static inline real r_from_q16(int32_t v) { return (real)v; }
 
+/* A value in [0, 1] as a Q16.16 integer (0..65536): exact. */
+static inline int32_t r_unit_to_q16(real a) { return a; }
+
 /* Nearest integer (half up). */
 static inline int32_t r_to_int(real a) { return (int32_t)(((int64_t)a + 0x8000) >> 16); }
 

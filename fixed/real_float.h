@@ -40,6 +40,9 @@ static inline real r_from_int(int32_t i) { return (real)i; }
 /* A Q16.16 integer (65536 = 1.0) as a real: exact below 256 in magnitude. */
 static inline real r_from_q16(int32_t v) { return (real)v * (1.0f / 65536.0f); }
 
+/* A value in [0, 1] as a Q16.16 integer (0..65536), rounded. */
+static inline int32_t r_unit_to_q16(real a) { return (int32_t)(a * 65536.0f + 0.5f); }
+
 static inline int32_t r_to_int(real a) { return (int32_t)floorf(a + 0.5f); }
 
 static inline real r_from_ratio(int32_t num, int32_t den) { return fl_chk((real)num / (real)den); }

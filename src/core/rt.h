@@ -295,7 +295,8 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const corner[4], int thr
 
 /* Fills `cols` x `rows` pixels from dst (stride pixels per row) by bilinear interpolation of
  * the colours at the corners of a w x h square: c00 at (0, 0), c10 at (w, 0), c01 at (0, h),
- * c11 at (w, h). cols <= w + 1 and rows <= h + 1; corner pixels get their colour exactly. */
+ * c11 at (w, h), each clamped to [0, 1] first. cols <= w + 1 and rows <= h + 1; corner pixels
+ * get their colour exactly. */
 void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
                     rt_color c10, rt_color c01, rt_color c11);
 
