@@ -548,4 +548,18 @@ static inline vec3 d3_scale_in(dir3 d, real s)
               (real)fx_round_shift((int64_t)s * d.y, FX_UF),
               (real)fx_round_shift((int64_t)s * d.z, FX_UF));
 }
+/* v3_dot_d_in(v3_sub_in(c, l), d) in two parts, for one ray d against many points c:
+ * part = v3_dot_part(l, d) once, then v3_dot_d_from(c, d, part) per point. The same value:
+ * the unrounded sums c . d - l . d and (c - l) . d are equal (in-scene c and l: each sum
+ * below 2^61). */
+typedef int64_t dotpart;
+static inline dotpart v3_dot_part(vec3 l, dir3 d)
+{
+    return (int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z;
+}
+static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
+{
+    int64_t s = (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z - part;
+    return (real)fx_round_shift(s, FX_UF);
+}
 #endif
