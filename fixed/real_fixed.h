@@ -119,6 +119,9 @@ static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
 /* A Q16.16 integer (65536 = 1.0) as a real: exact. */
 static inline real r_from_q16(int32_t v) { return (real)v; }
 
+/* A value in [0, 1] as a Q16.16 integer (0..65536): exact. */
+static inline int32_t r_unit_to_q16(real a) { return a; }
+
 /* Nearest integer (half up). */
 static inline int32_t r_to_int(real a) { return (int32_t)(((int64_t)a + 0x8000) >> 16); }
 
@@ -590,5 +593,19 @@ static inline vec3 d3_scale_in(dir3 d, real s)
     return v3((real)fx_round_shift((int64_t)s * d.x, FX_UF),
               (real)fx_round_shift((int64_t)s * d.y, FX_UF),
               (real)fx_round_shift((int64_t)s * d.z, FX_UF));
+}
+/* v3_dot_d_in(v3_sub_in(c, l), d) in two parts, for one ray d against many points c:
+ * part = v3_dot_part(l, d) once, then v3_dot_d_from(c, d, part) per point. The same value:
+ * the unrounded sums c . d - l . d and (c - l) . d are equal (in-scene c and l: each sum
+ * below 2^61). */
+typedef int64_t dotpart;
+static inline dotpart v3_dot_part(vec3 l, dir3 d)
+{
+    return (int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z;
+}
+static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
+{
+    int64_t s = (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z - part;
+    return (real)fx_round_shift(s, FX_UF);
 }
 #endif

@@ -40,6 +40,9 @@ static inline real r_from_int(int32_t i) { return (real)i; }
 /* A Q16.16 integer (65536 = 1.0) as a real: exact below 256 in magnitude. */
 static inline real r_from_q16(int32_t v) { return (real)v * (1.0f / 65536.0f); }
 
+/* A value in [0, 1] as a Q16.16 integer (0..65536), rounded. */
+static inline int32_t r_unit_to_q16(real a) { return (int32_t)(a * 65536.0f + 0.5f); }
+
 static inline int32_t r_to_int(real a) { return (int32_t)floorf(a + 0.5f); }
 
 static inline real r_from_ratio(int32_t num, int32_t den) { return fl_chk((real)num / (real)den); }
@@ -261,4 +264,15 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static inline real v3_dot_d_in(vec3 v, dir3 d) { return v3_dot_d(v, d); }
 static inline vec3 d3_scale_in(dir3 d, real s) { return d3_scale(d, s); }
+/* The split form of v3_dot_d_in(v3_sub_in(c, l), d): float keeps l and subtracts first. */
+typedef vec3 dotpart;
+static inline dotpart v3_dot_part(vec3 l, dir3 d)
+{
+    (void)d;
+    return l;
+}
+static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
+{
+    return v3_dot_d_in(v3_sub_in(c, part), d);
+}
 #endif

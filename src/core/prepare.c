@@ -153,6 +153,55 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach)
     return k > 0 ? k : 0;
 }
 
+/* The bounding sphere of the scene's spheres (rt_scene.bound_*): centred in the box of their
+ * extents, its radius the largest |c_i - centre| + r_i rounded up. Any sphere test that could
+ * report a hit on a sphere inside reports a point within r_i + rho_i of c_i, rho_i its
+ * rounding (scene_cull: at most 2^-10 + (D_i + r_i) 2^-14), so within R + rho_i of the centre,
+ * and rho_i is within the bound's own margin, as D_i + r_i <= D + R: a ray or segment that
+ * scene_cull's test for the bound rejects misses each sphere inside. */
+static void scene_bound(rt_scene *s)
+{
+    uint32_t set = 0;
+    vec3 lo = {0, 0, 0}, hi = {0, 0, 0};
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        if (o->kind != RT_SPHERE)
+            continue;
+        vec3 a = v3_sub(o->center, v3(o->radius, o->radius, o->radius));
+        vec3 b = v3_add(o->center, v3(o->radius, o->radius, o->radius));
+        if (!set) {
+            lo = a;
+            hi = b;
+        }
+        lo = v3(r_min(lo.x, a.x), r_min(lo.y, a.y), r_min(lo.z, a.z));
+        hi = v3(r_max(hi.x, b.x), r_max(hi.y, b.y), r_max(hi.z, b.z));
+        set |= (uint32_t)1 << i;
+    }
+    s->bound_set = 0;
+    if ((set & (set - 1)) == 0) /* fewer than two spheres: nothing to gain */
+        return;
+    vec3 c = v3_add(
+        lo,
+        v3(r_shr(r_sub(hi.x, lo.x), 1), r_shr(r_sub(hi.y, lo.y), 1), r_shr(r_sub(hi.z, lo.z), 1)));
+    real radius = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        if (set & ((uint32_t)1 << i))
+            radius = r_max(radius, r_add(r_sqrt_w(w_len2(v3_sub(o->center, c))), o->radius));
+    }
+    /* rounded up: the square root's rounding (half a step fixed, 2^-24 relative float) */
+    radius = r_add(r_add(radius, R(0.0009765625)), r_shr(radius, 14));
+    rt_object b = {.kind = RT_SPHERE, .center = c, .radius = radius};
+    s->bound_set = set;
+    s->bound_center = c;
+    s->bound_radius = radius;
+    for (int l = 0; l < RT_MAX_LIGHTS; l++)
+        s->bound_shadow_cull[l] =
+            l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+    s->bound_eye_l = v3_sub_in(c, s->eye_at);
+    s->bound_eye_cull = scene_cull(&b, s->eye_at, 0);
+}
+
 void rt_scene_prepare(rt_scene *s)
 {
     for (int i = 0; i < s->nobjects; i++) {
@@ -188,5 +237,6 @@ void rt_scene_prepare(rt_scene *s)
         s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
         s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0) : 0;
     }
+    scene_bound(s);
     scene_derive_effects(s);
 }

@@ -128,6 +128,16 @@ typedef struct rt_scene {
     vec3 eye_at;
     vec3 eye_l[RT_MAX_OBJECTS];
     wide eye_cull[RT_MAX_OBJECTS];
+    /* A sphere around every sphere of the scene (bound_set: their bits, 0 when there are
+     * fewer than two), with the same rejections as one sphere: a shadow ray toward light l or
+     * a primary ray that it rejects (bound_shadow_cull[l], bound_eye_l and bound_eye_cull as
+     * above) misses every sphere inside, whose own tests are then skipped. */
+    uint32_t bound_set;
+    vec3 bound_center;
+    real bound_radius;
+    wide bound_shadow_cull[RT_MAX_LIGHTS];
+    vec3 bound_eye_l;
+    wide bound_eye_cull;
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
@@ -290,7 +300,8 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const corner[4], int thr
 
 /* Fills `cols` x `rows` pixels from dst (stride pixels per row) by bilinear interpolation of
  * the colours at the corners of a w x h square: c00 at (0, 0), c10 at (w, 0), c01 at (0, h),
- * c11 at (w, h). cols <= w + 1 and rows <= h + 1; corner pixels get their colour exactly. */
+ * c11 at (w, h), each clamped to [0, 1] first. cols <= w + 1 and rows <= h + 1; corner pixels
+ * get their colour exactly. */
 void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
                     rt_color c10, rt_color c01, rt_color c11);
 

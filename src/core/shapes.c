@@ -100,10 +100,19 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
 {
     real tmax = R_T_MAX;
     int best = -1;
+    uint32_t skip = 0; /* spheres the bounding sphere's rejection covers */
+    wide kb = s->bound_eye_cull;
+    if (kb > 0) {
+        real tb = v3_dot_d_in(s->bound_eye_l, d);
+        if (tb <= 0 || w_sq(tb) < kb)
+            skip = s->bound_set;
+    }
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
         int h;
+        if (skip & ((uint32_t)1 << i))
+            continue;
         if (o->kind == RT_SPHERE) {
             /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
              * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */
@@ -125,26 +134,48 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
     return best;
 }
 
+/* The full test of a shadow-ray candidate, kept out of line: the loop below then holds the ray
+ * and the light in registers instead of sharing them with the intersection code. */
+static __attribute__((noinline)) int shapes_blocks(const rt_object *o, const vec3 *org,
+                                                   const dir3 *d, real dist)
+{
+    real hit;
+    return shapes_intersect(o, *org, *d, dist, &hit);
+}
+
 int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
                 real dist)
 {
-    const vec3 lp = s->lights[light].pos;
+    const dotpart lpd = v3_dot_part(s->lights[light].pos, d);
     const wide *cull = s->shadow_cull[light];
-    for (int i = 0; occ; i++, occ >>= 1) {
-        if (!(occ & 1u))
-            continue;
+    uint32_t tested = 0;
+    int blocked = 0;
+    /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
+    wide kb = s->bound_shadow_cull[light];
+    if (kb > 0 && (occ & s->bound_set)) {
+        real cd = v3_dot_d_from(s->bound_center, d, lpd);
+        if (cd >= 0 || w_sq(cd) < kb)
+            occ &= ~s->bound_set;
+    }
+    /* Set bits in increasing order (the objects' order); counted once, after the loop. */
+    for (; occ; occ &= occ - 1) {
+        int i = __builtin_ctz(occ);
         const rt_object *o = &s->objects[i];
-        real hit;
-        st->shadow_tests++;
+        tested++;
         /* The ray from the light back along -d passes too far from the sphere for this
-         * segment to reach it (rt_scene_prepare): the full test would miss. */
-        if (o->kind == RT_SPHERE && cull[i] > 0) {
-            real cd = v3_dot_d_in(v3_sub_in(o->center, lp), d);
-            if (cd >= 0 || w_sq(cd) < cull[i])
+         * segment to reach it (rt_scene_prepare): the full test would miss. A plane's entry
+         * is 0. */
+        wide k = cull[i];
+        if (k > 0) {
+            real cd = v3_dot_d_from(o->center, d, lpd); /* (centre - light) . d */
+            if (cd >= 0 || w_sq(cd) < k)
                 continue;
         }
-        if (shapes_intersect(o, org, d, dist, &hit))
-            return 1;
+        if (shapes_blocks(o, &org, &d, dist)) {
+            blocked = 1;
+            break;
+        }
     }
-    return 0;
+    st->shadow_tests += tested;
+    return blocked;
 }

@@ -65,17 +65,57 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
     return RT_SPLIT_NONE;
 }
 
-static rt_color ss_lerp(rt_color a, rt_color b, real t)
+/* The fill works on integer channels: a colour in [0, 1] as its Q16.16 value, 0..65536
+ * (r_unit_to_q16), and weights i / n as Q16.16 integers rounded to nearest. Its arithmetic is
+ * the fixed-point build's r_lerp, r_mul and r_to_byte step for step (no intermediate value can
+ * saturate), so fixed frames are what they were with those calls, at a fraction of the cost;
+ * the float build interpolates the same way from its rounded corners. */
+typedef struct ss_rgb {
+    int32_t c[3];
+} ss_rgb;
+
+/* i / n as a Q16.16 integer, rounded to nearest (r_from_ratio's fixed-point value). */
+static int32_t ss_weight(int i, int n) { return (i * 65536 + n / 2) / n; }
+
+static ss_rgb ss_rgb_of(rt_color c)
 {
-    return v3(r_lerp(a.x, b.x, t), r_lerp(a.y, b.y, t), r_lerp(a.z, b.z, t));
+    ss_rgb v = {{r_unit_to_q16(r_clamp(c.x, 0, R_ONE)), r_unit_to_q16(r_clamp(c.y, 0, R_ONE)),
+                 r_unit_to_q16(r_clamp(c.z, 0, R_ONE))}};
+    return v;
 }
 
-/* Bilinear fill with the weights wx[i] = i / w and wy[j] = j / h given (only wx[1] is used). */
-static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows, const real *wx,
-                    const real *wy, rt_color c00, rt_color c10, rt_color c01, rt_color c11)
+/* d * t / 2^16 rounded half away from zero (as r_mul rounds), for |d| <= 65536 and
+ * 0 <= t < 65536: the product and its rounding fit in 32 unsigned bits. */
+static int32_t ss_mul(int32_t d, int32_t t)
 {
+    uint32_t p = (uint32_t)(d < 0 ? -d : d) * (uint32_t)t;
+    int32_t q = (int32_t)((p + 0x8000u) >> 16);
+    return d < 0 ? -q : q;
+}
+
+/* One channel as a byte: clamped to [0, 65536] and rounded as r_to_byte does. */
+static uint32_t ss_byte(int32_t v)
+{
+    if (v <= 0)
+        return 0;
+    if (v >= 65536)
+        return 255;
+    return ((uint32_t)v * 255u + 0x8000u) >> 16;
+}
+
+static uint32_t ss_pixel(const int32_t *c)
+{
+    return ss_byte(c[0]) << 16 | ss_byte(c[1]) << 8 | ss_byte(c[2]);
+}
+
+/* Bilinear fill with the Q16.16 weights wx[i] = i / w and wy[j] = j / h given (only wx[1] is
+ * used). */
+static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows, const int32_t *wx,
+                    const int32_t *wy, ss_rgb c00, ss_rgb c10, ss_rgb c01, ss_rgb c11)
+{
+    int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
     for (int j = 0; j < rows; j++) {
-        rt_color l, r;
+        ss_rgb l, r;
         if (j == 0) {
             l = c00;
             r = c10;
@@ -83,32 +123,43 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             l = c01;
             r = c11;
         } else {
-            l = ss_lerp(c00, c01, wy[j]);
-            r = ss_lerp(c10, c11, wy[j]);
+            for (int ch = 0; ch < 3; ch++) {
+                l.c[ch] = c00.c[ch] + ss_mul(c01.c[ch] - c00.c[ch], wy[j]);
+                r.c[ch] = c10.c[ch] + ss_mul(c11.c[ch] - c10.c[ch], wy[j]);
+            }
         }
-        /* Along the row by forward differences: w additions of (r - l) / w drift by at most
-         * w/2 steps of the number system, far below an 8-bit level. */
         uint32_t *row = dst + (long)j * stride;
-        rt_color step = w > 0 ? v3_scale(v3_sub(r, l), wx[1]) : l, v = l;
-        row[0] = rt_color_pixel(l);
-        for (int i = 1; i < cols; i++) {
-            v = v3_add(v, step);
-            row[i] = rt_color_pixel(i == w ? r : v);
+        row[0] = ss_pixel(l.c);
+        if (inner > 1) {
+            /* Along the row by forward differences: w additions of (r - l) / w drift by at
+             * most w/2 steps of Q16.16, far below an 8-bit level (and within 32 bits). */
+            int32_t s0 = ss_mul(r.c[0] - l.c[0], wx[1]), s1 = ss_mul(r.c[1] - l.c[1], wx[1]),
+                    s2 = ss_mul(r.c[2] - l.c[2], wx[1]);
+            int32_t v0 = l.c[0], v1 = l.c[1], v2 = l.c[2];
+            for (int i = 1; i < inner; i++) {
+                v0 += s0;
+                v1 += s1;
+                v2 += s2;
+                row[i] = ss_byte(v0) << 16 | ss_byte(v1) << 8 | ss_byte(v2);
+            }
         }
+        if (cols > w && w > 0)
+            row[w] = ss_pixel(r.c);
     }
 }
 
 void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
                     rt_color c10, rt_color c01, rt_color c11)
 {
-    real wx[RT_GRID_MAX + 1], wy[RT_GRID_MAX + 1];
+    int32_t wx[RT_GRID_MAX + 1], wy[RT_GRID_MAX + 1];
     if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
         return;
     for (int i = 1; i <= w; i++)
-        wx[i] = r_from_ratio(i, w);
+        wx[i] = ss_weight(i, w);
     for (int j = 1; j < h; j++)
-        wy[j] = r_from_ratio(j, h);
-    ss_fill(dst, stride, w, h, cols, rows, wx, wy, c00, c10, c01, c11);
+        wy[j] = ss_weight(j, h);
+    ss_fill(dst, stride, w, h, cols, rows, wx, wy, ss_rgb_of(c00), ss_rgb_of(c10), ss_rgb_of(c01),
+            ss_rgb_of(c11));
 }
 
 /* One frame's adaptive rendering state. */
@@ -124,7 +175,7 @@ typedef struct ss_ctx {
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
-    real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
+    int32_t wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n, Q16.16 (ss_weight) */
 } ss_ctx;
 
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
@@ -181,8 +232,8 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
     }
     int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
     uint32_t *dst = c->pixels + (long)y0 * c->stride + x0;
-    ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], k[0]->color, k[1]->color,
-            k[2]->color, k[3]->color);
+    ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], ss_rgb_of(k[0]->color),
+            ss_rgb_of(k[1]->color), ss_rgb_of(k[2]->color), ss_rgb_of(k[3]->color));
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
      * lie on the edges this square shares with squares done before it: its top row and left
      * column (nothing is ever traced inside a square that is not split). */
@@ -229,7 +280,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .lstride = g + 1};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
-            c.wt[n][i] = r_from_ratio(i, n);
+            c.wt[n][i] = ss_weight(i, n);
 
     rt_sample *top = work, *bot = top + ncols + 1;
     c.lat = bot + ncols + 1;
