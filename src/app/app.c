@@ -40,7 +40,7 @@ typedef struct app_opts {
     int have_frames, have_step;
     int checksum, progress;
     int effects_all;
-    knobs k; /* --depth, --mode, --grid, --threshold, --min-contrib, --octaves */
+    knobs k; /* --depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint */
     int stats;
     int show_samples;
     int threads;            /* 1..PLAT_MAX_THREADS */
@@ -78,6 +78,8 @@ static void app_usage(FILE *f)
         "                      (default 0.01; 0 = trace every ray)\n"
         "  --octaves N         noise textures sum at most N octaves, 1..8 (default: each\n"
         "                      texture's own count, from the scene)\n"
+        "  --footprint F       on: noise octaves finer than a pixel are left out, the last\n"
+        "                      one faded (default); off: every octave\n"
         "  --effects E         auto: trace only the effects the frame needs (default);\n"
         "                      all: every effect on, for comparison\n"
         "  --show-samples      paint every traced point white\n"
@@ -86,7 +88,7 @@ static void app_usage(FILE *f)
         "  --stats             print key=value statistics on standard output (with --frames:\n"
         "                      summed over the frames)\n"
         "play: --scene, --size (default 640x480), --threads, --depth, --mode, --grid,\n"
-        "--threshold, --min-contrib, --octaves and --show-samples as above, and\n"
+        "--threshold, --min-contrib, --octaves, --footprint and --show-samples as above, and\n"
         "  --frames N          quit after N frames, stepping the timeline by exactly one frame\n"
         "                      period each (a scripted, reproducible run)\n"
         "  --screenshot FILE   save the last frame shown (.png or .ppm)\n"
@@ -377,6 +379,7 @@ static void app_print_stats(const app_opts *o, const char *scene_name, const rt_
         printf("octaves=%d\n", o->k.octaves);
     else
         printf("octaves=scene\n");
+    printf("footprint=%s\n", o->k.footprint ? "on" : "off");
     printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000), (unsigned long long)(us % 1000));
     printf("pixels=%ld\n", (long)o->width * o->height);
     printf("threads=%d\n", o->threads);

@@ -1,4 +1,4 @@
-/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
+/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves, footprint), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
 #ifndef FIXRAY_KNOBS_H
 #define FIXRAY_KNOBS_H
 
@@ -15,13 +15,14 @@ typedef struct knobs {
     int32_t grid;                   /* --grid: 2, 4, 8 or 16 */
     int32_t threshold, min_contrib; /* --threshold, --min-contrib, in 1/KNOBS_SCALE */
     int32_t octaves;                /* --octaves: cap on noise octaves, 0 = the scene's */
+    int32_t footprint;              /* --footprint on|off: 1 = octaves by pixel footprint */
 } knobs;
 
 /* The defaults of `render` (README): RT_DEFAULT_THRESHOLD and RT_DEFAULT_MIN_CONTRIB. */
 #define KNOBS_DEFAULTS \
     { \
         .depth = -1, .mode = RT_MODE_ADAPTIVE, .grid = RT_DEFAULT_GRID, .threshold = 625, \
-        .min_contrib = 100, .octaves = 0 \
+        .min_contrib = 100, .octaves = 0, .footprint = 1 \
     }
 
 /* 1 when `opt` is one of the settings' options (each takes a value), else 0. */
