@@ -91,7 +91,8 @@ fi
 # byte for byte those of the host's rt-fixed with the same settings, other pictures than the
 # default's, and other instruction counts.
 SET_FRAMES=(425 875)
-for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode=full --octaves=2"; do
+for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode=full --octaves=2" \
+  "--footprint off"; do
   tag=$(tr -c 'a-z0-9\n' _ <<<"$S")
   # shellcheck disable=SC2086  # settings are words on purpose
   if platform/arm/qemu.sh frames fixed $S "${SET_FRAMES[@]}" >"$T/set-$tag.log" 2>&1; then
@@ -117,7 +118,7 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
   fi
 done
 # A setting the board cannot take gets one line and status 2, before any frame.
-for S in "--grid 16" "--octaves 9" "--threshold=2" "--depth 2 --depth=3"; do
+for S in "--grid 16" "--octaves 9" "--threshold=2" "--depth 2 --depth=3" "--footprint 1"; do
   # shellcheck disable=SC2086
   out=$(platform/arm/qemu.sh bench fixed $S 0 0 1 2>&1)
   st=$?

@@ -7,7 +7,7 @@
 #   platform/arm/qemu.sh bench  [REAL] [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP
 # REAL is fixed (default), float (soft-float) or fixed16 (build/arm/intro-fixed16.elf, unit
 # vectors in Q16.16). SETTINGS are render's options --depth N, --mode full|adaptive, --grid N,
-# --threshold X, --min-contrib X and --octaves N (defaults as for render); the board parses and checks them
+# --threshold X, --min-contrib X, --octaves N and --footprint on|off (defaults as for render); the board parses and checks them
 # (grids 4 and 8 only: the working storage of grids 2 and 16 does not fit its RAM budget). A
 # fixed frame rendered with settings is byte for byte `build/rt-fixed render --size 320x240
 # --frame N SETTINGS`.
@@ -45,14 +45,14 @@ settings=()
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
-    --depth|--mode|--grid|--threshold|--min-contrib|--octaves)
+    --depth|--mode|--grid|--threshold|--min-contrib|--octaves|--footprint)
       [ $# -ge 2 ] || die "$1 needs a value"
       settings+=("$1" "$2")
       shift 2 ;;
-    --depth=*|--mode=*|--grid=*|--threshold=*|--min-contrib=*|--octaves=*)
+    --depth=*|--mode=*|--grid=*|--threshold=*|--min-contrib=*|--octaves=*|--footprint=*)
       settings+=("$1")
       shift ;;
-    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves)" ;;
+    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint)" ;;
     *) args+=("$1"); shift ;;
   esac
 done

@@ -137,6 +137,7 @@ static void app_print_stats(const cli_opts *o, const char *scene_name, const rt_
         printf("octaves=%d\n", o->k.octaves);
     else
         printf("octaves=scene\n");
+    printf("footprint=%s\n", o->k.footprint ? "on" : "off");
     printf("ms=%llu.%03llu\n", (unsigned long long)(us / 1000), (unsigned long long)(us % 1000));
     printf("pixels=%ld\n", (long)o->width * o->height);
     printf("threads=%d\n", o->threads);

@@ -97,6 +97,9 @@ static const struct cli_option {
     {"--octaves", NULL, "N", CLI_R | CLI_PLAY | CLI_EDGES, CLI_KNOB,
      "noise textures sum at most N octaves, 1..8 (default: each\ntexture's own count, from the "
      "scene)"},
+    {"--footprint", NULL, "F", CLI_R | CLI_PLAY | CLI_EDGES, CLI_KNOB,
+     "on: noise octaves finer than a pixel are left out, the last\none faded (default); off: "
+     "every octave"},
     {"--effects", NULL, "E", CLI_R, CLI_EFFECTS,
      "auto: trace only the effects the frame needs (default);\nall: every effect on, for "
      "comparison"},

@@ -11,8 +11,8 @@
  *                            display until stopped (lets a test grab the display)
  * Every command also takes the render settings of `render` (src/scene/knobs.h): --depth, --mode,
  * --grid (4 or 8: the working storage of grids 2 and 16 does not fit the board's RAM budget),
- * --threshold, --min-contrib, --octaves; their defaults are render's. A frame is byte for byte
- * `build/rt-fixed render --size 320x240 --frame N` with the same settings.
+ * --threshold, --min-contrib, --octaves, --footprint; their defaults are render's. A frame is
+ * byte for byte `build/rt-fixed render --size 320x240 --frame N` with the same settings.
  * `instructions` is the platform clock in nanoseconds across rt_render: under QEMU with
  * `-icount shift=0` a guest instruction advances that clock by exactly 1 ns.
  * Nothing here allocates: the scene and the adaptive mode's working storage are static.
@@ -340,6 +340,6 @@ int app_main(int argc, char **argv)
         return intro_show(argc - 2, argv + 2);
     plat_log("intro: error: unknown command (commands: play, frames [--out PREFIX] N..., "
              "bench FIRST LAST STEP, show N; each with render's --depth, --mode, --grid, "
-             "--threshold, --min-contrib, --octaves)");
+             "--threshold, --min-contrib, --octaves, --footprint)");
     return 2;
 }

@@ -37,6 +37,7 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     unit sn, cs;
     u_sincos_deg(r_shr(cam->fov, 1), &sn, &cs);
     v->step = u_tan_step(sn, cs, height); /* tan(fov / 2) / height */
+    v->pixel = r_div(r_muli(u_to_real(sn), 2), r_muli(u_to_real(cs), height));
 }
 
 dir3 rt_view_ray(const rt_view *v, int x, int y)

@@ -10,52 +10,80 @@ static const int8_t noise_grad[16][3] = {
     {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
 };
 
-uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
+/* Lattice coordinates are Q16.16 integers modulo the period: 24 bits. */
+#define NOISE_FRAC 16
+#define NOISE_ONE (1 << NOISE_FRAC)
+#define NOISE_COORD_MASK ((uint32_t)RT_NOISE_PERIOD * NOISE_ONE - 1)
+
+/* The hash is a product per axis, the three XORed, then mixed: the per-axis products of a
+ * cell's two corners along each axis are shared by its eight corners. */
+#define NOISE_HX 0x8DA6B343u
+#define NOISE_HY 0xD8163841u
+#define NOISE_HZ 0xCB1AB31Fu
+
+static inline uint32_t noise_mix(uint32_t h)
 {
-    const uint32_t mask = RT_NOISE_PERIOD - 1;
-    uint32_t h = ((uint32_t)i & mask) * 0x8DA6B343u;
-    h ^= ((uint32_t)j & mask) * 0xD8163841u;
-    h ^= ((uint32_t)k & mask) * 0xCB1AB31Fu;
     h ^= h >> 15;
     h *= 0x2C1B3C6Du;
     h ^= h >> 12;
     return h;
 }
 
-static real noise_term(real v, int g) { return r_mul_sign(v, g); }
+uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
+{
+    const uint32_t mask = RT_NOISE_PERIOD - 1;
+    return noise_mix(((uint32_t)i & mask) * NOISE_HX ^ ((uint32_t)j & mask) * NOISE_HY ^
+                     ((uint32_t)k & mask) * NOISE_HZ);
+}
 
-/* Dot product of the corner's gradient with the offset (x, y, z) from that corner. */
-static inline __attribute__((always_inline)) real noise_dot(uint32_t h, real x, real y, real z)
+/* Dot product of the gradient of hash h with the offset (x, y, z) from that corner (Q16.16
+ * offsets in [-1, 1]: the result is within +-2). */
+static inline int32_t noise_dot(uint32_t h, int32_t x, int32_t y, int32_t z)
 {
     const int8_t *g = noise_grad[(h >> 8) & 15];
-    return r_add(r_add(noise_term(x, g[0]), noise_term(y, g[1])), noise_term(z, g[2]));
+    return g[0] * x + g[1] * y + g[2] * z;
 }
 
-/* Quintic fade 6t^5 - 15t^4 + 10t^3: zero first and second derivatives at 0 and 1. */
-static real noise_fade(real t)
+/* Quintic fade 6t^5 - 15t^4 + 10t^3 of t in [0, 1) (Q16.16): zero first and second
+ * derivatives at 0 and 1. t^3 is kept in Q.32 and the factor 10 - t (15 - 6t) in Q16.16, each
+ * rounded once: within 2 LSB of the exact value. */
+static inline int32_t noise_fade(uint32_t t)
 {
-    real f = r_add(r_mul(t, r_sub(r_muli(t, 6), R(15.0))), R(10.0));
-    return r_mul(r_mul(r_mul(t, t), t), f);
+    uint32_t t3 = (uint32_t)(((uint64_t)(t * t) * t + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+    uint32_t inner = 10 * NOISE_ONE -
+        (uint32_t)(((uint64_t)t * (15 * NOISE_ONE - 6 * t) + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+    return (int32_t)(((uint64_t)t3 * inner + 0x80000000u) >> 32);
 }
 
-real rt_noise(vec3 p)
+/* a + (b - a) t, t in [0, 1] (Q16.16), rounded half up. */
+static inline int32_t noise_lerp(int32_t a, int32_t b, int32_t t)
 {
-    int32_t i, j, k;
-    real x = r_floor_split(p.x, &i);
-    real y = r_floor_split(p.y, &j);
-    real z = r_floor_split(p.z, &k);
-    real x1 = r_sub(x, R_ONE), y1 = r_sub(y, R_ONE), z1 = r_sub(z, R_ONE);
-    real u = noise_fade(x), v = noise_fade(y), w = noise_fade(z);
+    return a + (int32_t)(((int64_t)(b - a) * t + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+}
 
-    real a = r_lerp(noise_dot(rt_noise_hash(i, j, k), x, y, z),
-                    noise_dot(rt_noise_hash(i + 1, j, k), x1, y, z), u);
-    real b = r_lerp(noise_dot(rt_noise_hash(i, j + 1, k), x, y1, z),
-                    noise_dot(rt_noise_hash(i + 1, j + 1, k), x1, y1, z), u);
-    real c = r_lerp(noise_dot(rt_noise_hash(i, j, k + 1), x, y, z1),
-                    noise_dot(rt_noise_hash(i + 1, j, k + 1), x1, y, z1), u);
-    real d = r_lerp(noise_dot(rt_noise_hash(i, j + 1, k + 1), x, y1, z1),
-                    noise_dot(rt_noise_hash(i + 1, j + 1, k + 1), x1, y1, z1), u);
-    return r_lerp(r_lerp(a, b, v), r_lerp(c, d, v), w);
+/* Noise at the lattice coordinates (cx, cy, cz) (Q16.16 modulo the period), in Q16.16. */
+static int32_t noise_eval(uint32_t cx, uint32_t cy, uint32_t cz)
+{
+    const uint32_t mask = RT_NOISE_PERIOD - 1;
+    uint32_t i = cx >> NOISE_FRAC, j = cy >> NOISE_FRAC, k = cz >> NOISE_FRAC;
+    int32_t x = (int32_t)(cx & (NOISE_ONE - 1)), y = (int32_t)(cy & (NOISE_ONE - 1)),
+            z = (int32_t)(cz & (NOISE_ONE - 1));
+    int32_t x1 = x - NOISE_ONE, y1 = y - NOISE_ONE, z1 = z - NOISE_ONE;
+    uint32_t hx0 = (i & mask) * NOISE_HX, hx1 = ((i + 1) & mask) * NOISE_HX;
+    uint32_t hy0 = (j & mask) * NOISE_HY, hy1 = ((j + 1) & mask) * NOISE_HY;
+    uint32_t hz0 = (k & mask) * NOISE_HZ, hz1 = ((k + 1) & mask) * NOISE_HZ;
+    int32_t u = noise_fade((uint32_t)x), v = noise_fade((uint32_t)y), w = noise_fade((uint32_t)z);
+
+    uint32_t h00 = hy0 ^ hz0, h10 = hy1 ^ hz0, h01 = hy0 ^ hz1, h11 = hy1 ^ hz1;
+    int32_t a = noise_lerp(noise_dot(noise_mix(hx0 ^ h00), x, y, z),
+                           noise_dot(noise_mix(hx1 ^ h00), x1, y, z), u);
+    int32_t b = noise_lerp(noise_dot(noise_mix(hx0 ^ h10), x, y1, z),
+                           noise_dot(noise_mix(hx1 ^ h10), x1, y1, z), u);
+    int32_t c = noise_lerp(noise_dot(noise_mix(hx0 ^ h01), x, y, z1),
+                           noise_dot(noise_mix(hx1 ^ h01), x1, y, z1), u);
+    int32_t d = noise_lerp(noise_dot(noise_mix(hx0 ^ h11), x, y1, z1),
+                           noise_dot(noise_mix(hx1 ^ h11), x1, y1, z1), u);
+    return noise_lerp(noise_lerp(a, b, v), noise_lerp(c, d, v), w);
 }
 
 vec3 rt_noise_wrap(vec3 p)
@@ -64,26 +92,95 @@ vec3 rt_noise_wrap(vec3 p)
     return v3(r_mod_pow2(p.x, period), r_mod_pow2(p.y, period), r_mod_pow2(p.z, period));
 }
 
-/* Sum over octaves of amp * f(noise), f the identity or the absolute value. */
-static real noise_octaves(vec3 p, int octaves, int absolute)
+/* A real in [0, 32768) as a Q16.16 integer, rounded down: exact in the fixed build, and in
+ * float every step (a floor, a product by 256) is exact too. */
+static uint32_t noise_q16(real w)
 {
-    real sum = 0, amp = R_ONE;
-    p = rt_noise_wrap(p);
-    for (int o = 0; o < octaves; o++) {
-        real n = rt_noise(p);
-        sum = r_add(sum, r_mul(absolute ? r_abs(n) : n, amp));
-        amp = r_shr(amp, 1);
-        /* the next octave: twice the wrapped point, wrapped again (rt_noise_wrap's bits) */
-        const real period = R(256.0);
-        p = v3(r_mod_pow2_twice(p.x, period), r_mod_pow2_twice(p.y, period),
-               r_mod_pow2_twice(p.z, period));
-    }
-    return sum;
+    int32_t i, hi, lo;
+    real f = r_floor_split(w, &i);
+    f = r_floor_split(r_muli(f, 256), &hi);
+    r_floor_split(r_muli(f, 256), &lo);
+    return (uint32_t)i << NOISE_FRAC | (uint32_t)hi << 8 | (uint32_t)lo;
 }
 
-real rt_fbm(vec3 p, int octaves) { return noise_octaves(p, octaves, 0); }
+real rt_noise(vec3 p)
+{
+    p = rt_noise_wrap(p);
+    return r_from_q16(noise_eval(noise_q16(p.x) & NOISE_COORD_MASK,
+                                 noise_q16(p.y) & NOISE_COORD_MASK,
+                                 noise_q16(p.z) & NOISE_COORD_MASK));
+}
 
-real rt_turbulence(vec3 p, int octaves) { return noise_octaves(p, octaves, 1); }
+/* E|noise| over the lattice, Q16.16 (0.2203, measured over 2 million points). */
+#define NOISE_ABS_MEAN 14434
+
+/* Sum over the octaves of d of amp * f(noise), f the identity or the absolute value. Each
+ * octave doubles the lattice coordinates modulo the period, in integers. */
+static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
+{
+    p = rt_noise_wrap(p);
+    uint32_t cx = noise_q16(p.x) & NOISE_COORD_MASK, cy = noise_q16(p.y) & NOISE_COORD_MASK,
+             cz = noise_q16(p.z) & NOISE_COORD_MASK;
+    int32_t sum = 0;
+    for (int o = 0; o < d.octaves; o++) {
+        int32_t n = noise_eval(cx, cy, cz);
+        if (absolute && n < 0)
+            n = -n;
+        if (o == d.octaves - 1 && d.last < RT_NOISE_WEIGHT_ONE) /* the fading octave */
+            n = (n * d.last + (absolute ? NOISE_ABS_MEAN : 0) * (RT_NOISE_WEIGHT_ONE - d.last) +
+                 RT_NOISE_WEIGHT_ONE / 2) >>
+                8;
+        sum += (n + ((1 << o) >> 1)) >> o; /* amplitude 2^-o, rounded half up */
+        cx = (cx << 1) & NOISE_COORD_MASK;
+        cy = (cy << 1) & NOISE_COORD_MASK;
+        cz = (cz << 1) & NOISE_COORD_MASK;
+    }
+    if (absolute) /* the octaves left out, at their mean */
+        for (int o = d.octaves; o < d.total; o++)
+            sum += (NOISE_ABS_MEAN + ((1 << o) >> 1)) >> o;
+    return r_from_q16(sum);
+}
+
+real rt_fbm_detail(vec3 p, rt_noise_detail d) { return noise_octaves(p, d, 0); }
+
+real rt_turbulence_detail(vec3 p, rt_noise_detail d) { return noise_octaves(p, d, 1); }
+
+real rt_fbm(vec3 p, int octaves)
+{
+    return noise_octaves(p, (rt_noise_detail){octaves, octaves, RT_NOISE_WEIGHT_ONE}, 0);
+}
+
+real rt_turbulence(vec3 p, int octaves)
+{
+    return noise_octaves(p, (rt_noise_detail){octaves, octaves, RT_NOISE_WEIGHT_ONE}, 1);
+}
+
+/* Octaves resolved below this footprint bias, in 1/256 octave: shifts the whole fade band. */
+#define NOISE_DETAIL_BIAS 0
+
+rt_noise_detail rt_noise_detail_for(real footprint, int octaves)
+{
+    rt_noise_detail d = {octaves, octaves, RT_NOISE_WEIGHT_ONE};
+    if (footprint <= 0)
+        return d;
+    /* the footprint in Q16.16, at most 2^8 (no octave is resolved beyond 1) */
+    uint32_t f = footprint >= R(256.0) ? (uint32_t)256 << NOISE_FRAC : noise_q16(footprint);
+    if (f == 0)
+        return d;
+    /* log2(f) in 1/256 octave: the top bit's position plus the bits below it read linearly
+     * (continuous and increasing, within 0.09 octave of the logarithm) */
+    int top = 31 - __builtin_clz(f);
+    int32_t log2f = top * 256 + (int32_t)(((f - ((uint32_t)1 << top)) << 8) >> top);
+    /* octaves resolved: log2(1 / footprint) = NOISE_FRAC - log2(f) */
+    int32_t resolved = NOISE_FRAC * 256 - log2f + NOISE_DETAIL_BIAS;
+    if (resolved >= octaves * 256)
+        return d;
+    if (resolved <= 0)
+        return (rt_noise_detail){0, octaves, RT_NOISE_WEIGHT_ONE};
+    d.octaves = (resolved + 255) >> 8;
+    d.last = resolved - (d.octaves - 1) * 256;
+    return d;
+}
 
 /* Each palette: five colour stops evenly spread over [0, 1]. */
 #define NOISE_STOPS 5

@@ -146,6 +146,7 @@ typedef struct rt_view {
     vec3 eye;
     dir3 fwd, right, up;
     ustep step; /* tan(fov/2) / height */
+    real pixel; /* a pixel's width at distance 1, 2 tan(fov/2) / height (noise footprint) */
     int width, height;
 } rt_view;
 
@@ -184,6 +185,7 @@ typedef struct rt_params {
                          between corners (colour units, 0..1; 1 disables the criterion) */
     int octaves;      /* cap on noise octaves: each texture sums min(its octaves, this);
                          0 = every texture's own (the scene's) */
+    int footprint;    /* 1: noise octaves finer than a pixel's footprint are left out */
 } rt_params;
 
 typedef struct rt_stats {
@@ -312,10 +314,11 @@ static inline uint32_t rt_color_pixel(rt_color c)
 }
 
 /* The diffuse colour of material m at the scene point p (its texture, if any), its noise
- * summed over at most max_octaves octaves (0: the texture's own count), which are added to
- * st->noise_octaves; *cell gets the id of the texture cell p lies in (checkerboard), 0 for
- * textures without cells. */
-rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stats *st,
-                          uint8_t *cell);
+ * summed over at most max_octaves octaves (0: the texture's own count) and only those a pixel
+ * covering `footprint` scene units resolves (0: all, rt_noise_detail_for), the octaves summed
+ * added to st->noise_octaves; *cell gets the id of the texture cell p lies in (checkerboard),
+ * 0 for textures without cells. */
+rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real footprint,
+                          rt_stats *st, uint8_t *cell);
 
 #endif

@@ -2,8 +2,8 @@
 #include "noise.h"
 #include "rt.h"
 
-rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stats *st,
-                          uint8_t *cell)
+rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real footprint,
+                          rt_stats *st, uint8_t *cell)
 {
     const rt_texture *tx = &m->tex;
     *cell = 0;
@@ -29,26 +29,30 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, rt_stat
     if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) == 0)
         return m->diffuse; /* a compiled-in scene without noise textures links no noise code */
     int octaves = max_octaves > 0 && max_octaves < tx->octaves ? max_octaves : tx->octaves;
-    st->noise_octaves += (uint32_t)octaves;
+    /* the octaves a pixel resolves: its footprint in noise units (a footprint of 256 or more
+     * resolves none at the smallest scale, 1/256: no product that could saturate) */
+    real fp = footprint < R(256.0) ? r_mul(footprint, tx->scale) : R(256.0);
+    rt_noise_detail detail = rt_noise_detail_for(fp, octaves);
+    st->noise_octaves += (uint32_t)detail.octaves;
     switch (tx->kind) {
     case RT_TEX_MARBLE: {
         /* Veins: a sine across x and y whose phase is pushed around by turbulence. The sine
          * repeats every 2 in x and 4 in y, so the point can be wrapped into the noise period
          * first: the phase then stays small wherever the point lies. */
         vec3 w = rt_noise_wrap(q);
-        real phase =
-            r_add(r_add(w.x, r_shr(w.y, 1)), r_mul(tx->turbulence, rt_turbulence(q, octaves)));
+        real phase = r_add(r_add(w.x, r_shr(w.y, 1)),
+                           r_mul(tx->turbulence, rt_turbulence_detail(q, detail)));
         real s = r_sin(r_mul(phase, R_PI));
         return rt_palette(tx->palette, r_add(R(0.5), r_shr(s, 1)));
     }
     case RT_TEX_WOOD: {
         /* Rings around the y axis, made irregular by noise. */
-        real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm(q, octaves)));
+        real ring = r_add(r_hypot(q.x, q.z), r_mul(tx->turbulence, rt_fbm_detail(q, detail)));
         return rt_palette(tx->palette, r_mod_pow2(ring, R_ONE));
     }
     case RT_TEX_NOISE:
     default: {
-        real n = rt_fbm(q, octaves);
+        real n = rt_fbm_detail(q, detail);
         return rt_palette(tx->palette, r_add(R(0.5), r_shr(n, 1)));
     }
     }

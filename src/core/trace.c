@@ -8,6 +8,7 @@ typedef struct trace_ctx {
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
+    real pixel;       /* a pixel's footprint per unit of ray length, 0 = footprint off */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
 } trace_ctx;
 
@@ -26,8 +27,10 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
         sm->nhits++;
 }
 
-/* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
-static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level)
+/* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel, `travelled`
+ * the length of its path from the eye to org. */
+static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
+                          real travelled)
 {
     const rt_scene *s = c->scene;
     real t;
@@ -52,8 +55,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
+    /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
+     * than any noise octave) so that it cannot saturate however deep the recursion */
+    const real travel_max = r_muli(R_SCENE_MAX, 2);
+    travelled = t < r_sub(travel_max, travelled) ? r_add(travelled, t) : travel_max;
     rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
-        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
+        ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
@@ -138,7 +145,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 if (wt >= c->min_contrib) { /* adaptive recursion control */
                     c->stats->rays_refract++;
                     vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
-                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1);
+                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled);
                     col = v3_madd(col, tc, m->transmit);
                 }
             } else {
@@ -148,7 +155,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         real wr = r_mul(weight, kr);
         if (kr > 0 && wr >= c->min_contrib) {
             c->stats->rays_reflect++;
-            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1);
+            rt_color rc =
+                trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, travelled);
             col = v3_madd(col, rc, kr);
         }
     }
@@ -160,12 +168,13 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared};
+    trace_ctx c = {s,           stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0,
+                   eye_prepared};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
         out->light_state[i] = 0;
     stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, 0);
 }

@@ -86,14 +86,17 @@ static const struct knobs_opt {
 };
 #define KNOBS_NOPTS (int)(sizeof knobs_table / sizeof *knobs_table)
 
-_Static_assert(KNOBS_NOPTS + 1 == KNOBS_COUNT, "KNOBS_COUNT: the table and --mode");
+_Static_assert(KNOBS_NOPTS + 2 == KNOBS_COUNT, "KNOBS_COUNT: the table, --mode and --footprint");
 
-/* Index of option opt in knobs_table, KNOBS_NOPTS for --mode, -1 for any other. */
+/* Index of option opt in knobs_table, KNOBS_NOPTS for --mode, KNOBS_NOPTS + 1 for
+ * --footprint, -1 for any other. */
 static int knobs_find(const char *opt)
 {
     for (int i = 0; i < KNOBS_NOPTS; i++)
         if (knobs_eq(opt, knobs_table[i].name))
             return i;
+    if (knobs_eq(opt, "--footprint"))
+        return KNOBS_NOPTS + 1;
     return knobs_eq(opt, "--mode") ? KNOBS_NOPTS : -1;
 }
 
@@ -117,6 +120,16 @@ int knobs_parse(knobs *k, const char *opt, const char *val, const char **expecte
             return -1;
         return 1;
     }
+    if (i == KNOBS_NOPTS + 1) {
+        *expected = "expected on or off";
+        if (knobs_eq(val, "on"))
+            k->footprint = 1;
+        else if (knobs_eq(val, "off"))
+            k->footprint = 0;
+        else
+            return -1;
+        return 1;
+    }
     const struct knobs_opt *o = &knobs_table[i];
     *expected = o->expected;
     /* grid: a power of two */
@@ -133,5 +146,6 @@ rt_params knobs_params(const knobs *k, int scene_depth)
                        .mode = k->mode,
                        .grid = k->grid,
                        .threshold = r_from_ratio(k->threshold, KNOBS_SCALE),
-                       .octaves = k->octaves};
+                       .octaves = k->octaves,
+                       .footprint = k->footprint};
 }

@@ -1,4 +1,4 @@
-/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
+/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves, footprint), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
 #ifndef FIXRAY_KNOBS_H
 #define FIXRAY_KNOBS_H
 
@@ -15,6 +15,7 @@ typedef struct knobs {
     int32_t grid;                   /* --grid: 2, 4, 8 or 16 */
     int32_t threshold, min_contrib; /* --threshold, --min-contrib, in 1/KNOBS_SCALE */
     int32_t octaves;                /* --octaves: cap on noise octaves, 0 = the scene's */
+    int32_t footprint;              /* --footprint on|off: 1 = octaves by pixel footprint */
 } knobs;
 
 /* The defaults of every program (render, play, the intro players, the boards, rt-edges): the
@@ -26,14 +27,14 @@ typedef struct knobs {
     { \
         .depth = -1, .mode = RT_MODE_ADAPTIVE, .grid = KNOBS_DEFAULT_GRID, \
         .threshold = KNOBS_DEFAULT_THRESHOLD, .min_contrib = KNOBS_DEFAULT_MIN_CONTRIB, \
-        .octaves = 0 \
+        .octaves = 0, .footprint = 1 \
     }
 
 /* 1 when `opt` is one of the settings' options (each takes a value), else 0. */
 int knobs_is_option(const char *opt);
 
 /* Which setting `opt` names: 0 .. KNOBS_COUNT - 1 (one bit each for "given twice"), or -1. */
-#define KNOBS_COUNT 6
+#define KNOBS_COUNT 7
 int knobs_index(const char *opt);
 
 /* If `opt` is a setting's option, parses its value `val` into *k and returns 1, or returns -1

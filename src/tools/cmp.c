@@ -9,23 +9,51 @@
 
 /* Each channel of the difference picture is |a - b| times this, clamped to 255. */
 #define CMP_DIFF_GAIN 16
+/* Largest --box factor (a 16x16 supersampled reference is more than any test needs). */
+#define CMP_BOX_MAX 16
+
+/* Replaces im by its n x n box-filtered reduction (each pixel the rounded mean of an n x n
+ * block); im's size must be a multiple of n. Returns 0, or -1 when out of memory. */
+static int cmp_box(img_rgb *im, int n)
+{
+    int w = im->width / n, h = im->height / n;
+    uint8_t *rgb = malloc((size_t)w * h * 3);
+    if (!rgb)
+        return -1;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            for (int c = 0; c < 3; c++) {
+                long sum = 0;
+                for (int j = 0; j < n; j++)
+                    for (int i = 0; i < n; i++)
+                        sum += im->rgb[3 * ((long)(y * n + j) * im->width + x * n + i) + c];
+                rgb[3 * ((long)y * w + x) + c] = (uint8_t)((sum + n * n / 2) / (n * n));
+            }
+    free(im->rgb);
+    im->rgb = rgb;
+    im->width = w;
+    im->height = h;
+    return 0;
+}
 
 static int cmp_usage(FILE *f)
 {
     fprintf(f,
-            "usage: rt-cmp A B [--diff D.png]\n"
+            "usage: rt-cmp A B [--diff D.png] [--box N]\n"
             "Compares two images of equal size (PNG or PPM) and prints one line:\n"
             "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
             "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
-            "more than 8).\n",
-            CMP_DIFF_GAIN);
+            "more than 8).\n"
+            "--box N: A is N times B's width and height (a supersampled reference) and is\n"
+            "box-filtered down to B's size first, each pixel the mean of N x N; N in 1..%d.\n",
+            CMP_DIFF_GAIN, CMP_BOX_MAX);
     return f == stdout ? 0 : 2;
 }
 
 int main(int argc, char **argv)
 {
     const char *path[2] = {NULL, NULL}, *diff = NULL;
-    int npath = 0;
+    int npath = 0, box = 1;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
             return cmp_usage(stdout);
@@ -35,6 +63,15 @@ int main(int argc, char **argv)
                 return 2;
             }
             diff = argv[++i];
+        } else if (strcmp(argv[i], "--box") == 0) {
+            char *end;
+            long n = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+            if (i + 1 >= argc || end == argv[i + 1] || *end || n < 1 || n > CMP_BOX_MAX) {
+                fprintf(stderr, "rt-cmp: --box expects a whole number in 1..%d\n", CMP_BOX_MAX);
+                return 2;
+            }
+            box = (int)n;
+            i++;
         } else if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "rt-cmp: unknown option '%s' (see rt-cmp --help)\n", argv[i]);
             return 2;
@@ -71,6 +108,19 @@ int main(int argc, char **argv)
         fprintf(stderr, "rt-cmp: %s\n", err);
         img_free(&a);
         return 2;
+    }
+    if (box > 1 && (a.width != b.width * box || a.height != b.height * box)) {
+        fprintf(stderr, "rt-cmp: --box %d: %s is %dx%d, not %d times %s (%dx%d)\n", box, path[0],
+                a.width, a.height, box, path[1], b.width, b.height);
+        img_free(&a);
+        img_free(&b);
+        return 2;
+    }
+    if (box > 1 && cmp_box(&a, box) != 0) {
+        fprintf(stderr, "rt-cmp: out of memory\n");
+        img_free(&a);
+        img_free(&b);
+        return 1;
     }
     if (a.width != b.width || a.height != b.height) {
         fprintf(stderr, "rt-cmp: sizes differ: %s is %dx%d, %s is %dx%d\n", path[0], a.width,
