@@ -117,8 +117,9 @@ typedef struct ss_ctx {
     const rt_view *view;
     const rt_params *params;
     rt_stats *stats;
-    uint32_t *pixels;
+    uint32_t *pixels; /* pixel row py0 of the frame */
     int stride;
+    int py0;
     uint8_t *traced;
     int thr8;       /* contribution threshold in 1/255 steps */
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
@@ -180,7 +181,7 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
         }
     }
     int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
-    uint32_t *dst = c->pixels + (long)y0 * c->stride + x0;
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
     ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], k[0]->color, k[1]->color,
             k[2]->color, k[3]->color);
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
@@ -208,9 +209,12 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
     }
 }
 
-void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
-                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands)
+/* Band `band` of `nbands` into `pixels`, whose first row is the frame's row py0. With `keep`,
+ * the row of corners on the band's top edge is the one a previous call left at the start of
+ * `work` (ss_band_leave). */
+static void ss_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                    int py0, int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                    int nbands, int keep, int leave)
 {
     const int g = p->grid, width = v->width, height = v->height;
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
@@ -224,6 +228,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .stats = stats,
                 .pixels = pixels,
                 .stride = stride,
+                .py0 = py0,
                 .traced = traced,
                 .thr8 = r_to_byte(p->threshold),
                 .lstride = g + 1};
@@ -233,7 +238,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
 
     rt_sample *top = work, *bot = top + ncols + 1;
     c.lat = bot + ncols + 1;
-    ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
+    if (!keep)
+        ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
         if (h == 0)
@@ -264,4 +270,44 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         top = bot;
         bot = t;
     }
+    if (leave && top != (rt_sample *)work)
+        memcpy(work, top, (size_t)(ncols + 1) * sizeof *top);
+}
+
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                        int nbands)
+{
+    ss_band(s, v, p, pixels, 0, stride, stats, work, traced, band, nbands, 0, 0);
+}
+
+/* ---- bands in sequence (rt_render_band_into): a band hands its bottom row of corners on ---- */
+
+void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows)
+{
+    *y0 = *rows = 0;
+    if (nbands < 1 || band < 0 || band >= nbands || height < 1)
+        return;
+    int n = rt_render_band_count(p, height);
+    int b0 = (int)((long)n * band / nbands), b1 = (int)((long)n * (band + 1) / nbands);
+    if (b0 == b1)
+        return;
+    if (p->mode == RT_MODE_ADAPTIVE) {
+        /* rows of squares b0 .. b1 - 1: each owns its top row, the last one the frame's end */
+        *y0 = ss_corner(b0, p->grid, height);
+        *rows = (b1 == n ? height : ss_corner(b1, p->grid, height)) - *y0;
+    } else {
+        *y0 = b0;
+        *rows = b1 - b0;
+    }
+}
+
+void rt_render_adaptive_into(const rt_scene *s, const rt_view *v, const rt_params *p,
+                             uint32_t *rows, int stride, rt_stats *stats, void *work, int band,
+                             int nbands, int keep)
+{
+    int y0, n;
+    rt_render_band_rows(p, v->height, band, nbands, &y0, &n);
+    if (n > 0)
+        ss_band(s, v, p, rows, y0, stride, stats, work, NULL, band, nbands, keep, 1);
 }
