@@ -200,7 +200,7 @@ PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector
-PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none
+PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
 

@@ -454,7 +454,8 @@ static void test_bands_into(void **state)
                         assert_true(rows >= 1 && rows <= (mode ? grids[g] + 1 : 1));
                         next = y0 + rows;
                         memset(band, 0xCD, sizeof band);
-                        rt_render_band_into(&s, &v, &p, band, w, &st, work, b, count, keep && b);
+                        rt_render_band_into(&s, &v, &p, band, w, &st, work, NULL, b, count,
+                                            keep && b);
                         for (size_t i = (size_t)(rows * w); i < sizeof band / sizeof *band; i++)
                             assert_int_equal(band[i], 0xCDCDCDCD);
                         memcpy(frame + y0 * w, band, (size_t)(rows * w) * sizeof *band);

@@ -291,17 +291,20 @@ void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, i
  * rendered in order trace what one rt_render traces, and give its pixels and stats. keep = 0
  * traces it (any band, any order). A display that keeps its own pixels needs no frame in RAM. */
 void rt_render_band_into(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *rows,
-                         int stride, rt_stats *stats, void *work, int band, int nbands, int keep);
+                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                         int nbands, int keep);
 
-/* The adaptive mode of rt_render_band (subsample.c). */
+/* What the pixel memory handed to a band holds. */
+enum rt_band_memory {
+    RT_BAND_FRAME, /* the whole frame (rt_render_band) */
+    RT_BAND_ONLY,  /* only the band, from its first row (rt_render_band_into) */
+    RT_BAND_KEEP   /* only the band, and `work` holds its top row of corners (keep) */
+};
+
+/* The adaptive mode of rt_render_band and rt_render_band_into (subsample.c). */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands);
-
-/* The adaptive mode of rt_render_band_into (subsample.c). */
-void rt_render_adaptive_into(const rt_scene *s, const rt_view *v, const rt_params *p,
-                             uint32_t *rows, int stride, rt_stats *stats, void *work, int band,
-                             int nbands, int keep);
+                        int nbands, enum rt_band_memory mem);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -209,12 +209,9 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
     }
 }
 
-/* Band `band` of `nbands` into `pixels`, whose first row is the frame's row py0. With `keep`,
- * the row of corners on the band's top edge is the one a previous call left at the start of
- * `work` (ss_band_leave). */
-static void ss_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
-                    int py0, int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                    int nbands, int keep, int leave)
+void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                        int nbands, enum rt_band_memory mem)
 {
     const int g = p->grid, width = v->width, height = v->height;
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
@@ -228,7 +225,7 @@ static void ss_band(const rt_scene *s, const rt_view *v, const rt_params *p, uin
                 .stats = stats,
                 .pixels = pixels,
                 .stride = stride,
-                .py0 = py0,
+                .py0 = mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
                 .traced = traced,
                 .thr8 = r_to_byte(p->threshold),
                 .lstride = g + 1};
@@ -236,9 +233,15 @@ static void ss_band(const rt_scene *s, const rt_view *v, const rt_params *p, uin
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = r_from_ratio(i, n);
 
+    /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
+     * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
     rt_sample *top = work, *bot = top + ncols + 1;
     c.lat = bot + ncols + 1;
-    if (!keep)
+    if (r0 % 2) {
+        top = bot;
+        bot = work;
+    }
+    if (mem != RT_BAND_KEEP)
         ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
@@ -270,18 +273,7 @@ static void ss_band(const rt_scene *s, const rt_view *v, const rt_params *p, uin
         top = bot;
         bot = t;
     }
-    if (leave && top != (rt_sample *)work)
-        memcpy(work, top, (size_t)(ncols + 1) * sizeof *top);
 }
-
-void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
-                        int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands)
-{
-    ss_band(s, v, p, pixels, 0, stride, stats, work, traced, band, nbands, 0, 0);
-}
-
-/* ---- bands in sequence (rt_render_band_into): a band hands its bottom row of corners on ---- */
 
 void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows)
 {
@@ -300,14 +292,4 @@ void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, i
         *y0 = b0;
         *rows = b1 - b0;
     }
-}
-
-void rt_render_adaptive_into(const rt_scene *s, const rt_view *v, const rt_params *p,
-                             uint32_t *rows, int stride, rt_stats *stats, void *work, int band,
-                             int nbands, int keep)
-{
-    int y0, n;
-    rt_render_band_rows(p, v->height, band, nbands, &y0, &n);
-    if (n > 0)
-        ss_band(s, v, p, rows, y0, stride, stats, work, NULL, band, nbands, keep, 1);
 }
