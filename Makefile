@@ -92,7 +92,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS)))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
+        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -267,6 +267,50 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
 $(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o): ARM_COLD_OPT := -Os
+
+# ---- Cortex-M3 image: bare metal for qemu-system-arm -M lm3s6965evb (platform/m3/) --------
+# The same core and src/app/intro.c at the OLED's 128x64, over the M3 backend: Thumb-2, soft-float
+# ABI, libfixmath compiled from the same fetched source. make m3 builds it and prints its sizes;
+# qemu-m3 plays it on the emulated OLED; qemu-m3-frames renders FRAMES into build/qemu-m3/.
+M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
+M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINTRO_W=128 -DINTRO_H=64
+M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
+              -Wl,--no-warn-rwx-segments
+M3_OBJ := $(BUILD)/obj/m3-fixed
+M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/m3/m3.c $(GEN)/scene_intro.c) \
+           $(M3_OBJ)/start.o
+M3_ELF := $(BUILD)/m3/intro-fixed.elf
+M3_FRAMES ?= 0 425 875
+
+$(M3_OBJ)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(BASE_CFLAGS) $(or $(M3_COLD_OPT),$(OPT)) $(M3_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
+# The command line runs once per command, outside the counted rendering: built for size.
+$(M3_OBJ)/src/app/intro.o $(M3_OBJ)/src/scene/knobs.o: M3_COLD_OPT := -Os
+$(M3_OBJ)/start.o: platform/m3/start.S
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M3_ARCH) -c $< -o $@
+$(M3_OBJ)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) -std=c11 $(OPT) $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$*.c -o $@
+$(M3_OBJ)/libfixmath.a: $(patsubst %.c,$(M3_OBJ)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+$(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M3_LDFLAGS) -Wl,-Map=$@.map -o $@ $(M3_OBJS) $(M3_OBJ)/libfixmath.a -lc -lgcc
+-include $(M3_OBJS:.o=.d)
+
+m3: setup-arm
+	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@tests/m3_check.sh --print
+
+qemu-m3: setup-gui
+	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@platform/m3/qemu.sh play $(SETTINGS)
+
+qemu-m3-frames: setup-arm
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed
+	@platform/m3/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
