@@ -346,7 +346,7 @@ run: setup
 	@src/tools/run-intro.sh $(if $(filter command line,$(origin REAL)),$(REAL),$(RUN_REAL))
 
 test: setup-test
-	@$(MAKE) --no-print-directory all san arm fuzz-progs
+	@$(MAKE) --no-print-directory all san arm m3 fuzz-progs
 	@tests/run.sh
 
 SECONDS ?= 60

@@ -552,7 +552,7 @@ for real in fixed float; do
   fi
 done
 
-# ---- scripts that print ok/FAIL lines: the player and threads, the ARM926 images under QEMU ----
+# ---- scripts that print ok/FAIL lines: the player and threads, the ARM926 and M3 images under QEMU ----
 run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL line fails too
   local log=$T/$(basename "$1" .sh).log st before=$failed line
   "$1" >"$log" 2>&1
@@ -568,6 +568,7 @@ run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL l
 }
 run_part tests/play.sh
 run_part tests/arm.sh
+run_part tests/m3.sh
 
 # ---- make bench's script, QUICK=1: runs end to end and writes a well-formed table ------------
 # Content, not timings: every configuration has one row, worst >= mean > 0, the fps follow from
