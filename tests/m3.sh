@@ -102,6 +102,22 @@ else
   fail "m3: screendump of frame $n on the OLED: $(tail -2 "$T/show.log" | tr '\n' ' ') $($B/rt-cmp "$T/screen.ppm" "$T/oled-$n.ppm" 2>&1)"
 fi
 
+# play (make qemu-m3, here without a window and in real time): the intro runs on the OLED, looping;
+# two screendumps 2 s apart show two different pictures, neither of them blank.
+rm -f "$T/play-1.ppm" "$T/play-2.ppm"
+{
+  sleep 3; echo "screendump $T/play-1.ppm"; sleep 2; echo "screendump $T/play-2.ppm"; sleep 1; echo quit
+} | timeout --foreground -k 5 60 qemu-system-arm -M lm3s6965evb -kernel "$B/m3/intro-fixed.elf" -display none \
+      -monitor stdio -serial "file:$T/play.log" -semihosting-config enable=on,target=native,arg=intro,arg=play \
+      >/dev/null 2>&1
+levels() { tail -c +16 "$1" | od -An -tu1 -v -w1 | sort -u | wc -l; }
+if [ -s "$T/play-1.ppm" ] && [ -s "$T/play-2.ppm" ] && ! cmp -s "$T/play-1.ppm" "$T/play-2.ppm" &&
+   [ "$(levels "$T/play-1.ppm")" -ge 4 ] && [ "$(levels "$T/play-2.ppm")" -ge 4 ] && grep -q '^intro: playing looped' "$T/play.log"; then
+  pass "m3: play shows the intro moving on the OLED (two screendumps 2 s apart differ, $(levels "$T/play-1.ppm") and $(levels "$T/play-2.ppm") grey levels)"
+else
+  fail "m3: play: $(tr '\n' ' ' <"$T/play.log" | cut -c1-200)"
+fi
+
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.
 MO=$B/obj/m3-fixed
 M3="-mcpu=cortex-m3 -mthumb -mfloat-abi=soft"

@@ -410,6 +410,10 @@ static void m3_clock_init(void)
     M3_SYST_RVR = M3_SYST_MAX;
     M3_SYST_CVR = 0;
     M3_SYST_CSR = 7;
+    /* The count reads 0 until the first step loads it, which plat_time_ns would take for the
+     * end of a period: wait for it. */
+    while (M3_SYST_CVR == 0)
+        ;
 }
 
 static void m3_io_init(void)
