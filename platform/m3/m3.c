@@ -213,11 +213,10 @@ static void m3_oled_rows(const uint32_t *px, int stride, int y0, int rows)
 
 static uint32_t m3_band[M3_BAND_ROWS * M3_W];
 static struct {
-    int width, height;     /* of the frame begun */
-    int y0, rows;          /* the band last given out */
-    const char *dest;      /* its name */
-    char tmp[128];         /* dest + ".tmp", written until the frame ends */
-    uint8_t rgb[M3_W * 3]; /* one row of it */
+    int width, height; /* of the frame begun */
+    int y0, rows;      /* the band last given out */
+    const char *dest;  /* its name */
+    char tmp[128];     /* dest + ".tmp", written until the frame ends */
 } m3_frame;
 static int m3_fd = -1; /* the frame's PPM: semihosting handle, or -1 */
 
@@ -326,14 +325,18 @@ int plat_band_present(void)
     if (w == M3_W)
         m3_oled_rows(m3_band, M3_W, y0, rows);
     if (m3_fd >= 0) {
+        /* Each row becomes its 3 w bytes of RGB in place (the band has been shown): byte 3 x + 2
+         * lies within pixel x, read before it is overwritten. */
         for (int y = 0; y < rows; y++) {
             const uint32_t *p = m3_band + y * M3_W;
+            uint8_t *rgb = (uint8_t *)(m3_band + y * M3_W);
             for (int x = 0; x < w; x++) {
-                m3_frame.rgb[3 * x] = (uint8_t)(p[x] >> 16);
-                m3_frame.rgb[3 * x + 1] = (uint8_t)(p[x] >> 8);
-                m3_frame.rgb[3 * x + 2] = (uint8_t)p[x];
+                uint32_t v = p[x];
+                rgb[3 * x] = (uint8_t)(v >> 16);
+                rgb[3 * x + 1] = (uint8_t)(v >> 8);
+                rgb[3 * x + 2] = (uint8_t)v;
             }
-            if (m3_write(m3_fd, m3_frame.rgb, (uint32_t)w * 3) != 0)
+            if (m3_write(m3_fd, rgb, (uint32_t)w * 3) != 0)
                 return m3_file_end(0);
         }
     }
@@ -446,7 +449,7 @@ void m3_main(void);
 void m3_main(void)
 {
     static char cmdline[256];
-    static char *argv[32];
+    static char *argv[24];
     int argc = 0, status = 2;
     m3_clock_init();
     m3_io_init();
@@ -461,7 +464,7 @@ void m3_main(void)
         if (!*s)
             break;
         if (argc == (int)(sizeof argv / sizeof *argv) - 1) {
-            plat_log("error: more than 31 arguments");
+            plat_log("error: more than 23 arguments");
             m3_exit(status);
         }
         argv[argc++] = s;
