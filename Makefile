@@ -6,8 +6,9 @@
 #                   headless into build/out/intro/ with a progress bar, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
-#                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
-#                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
+#                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
+#                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
+#                   QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
 #   make tradeoff   accuracy against cost: render options one at a time, float, fixed and fixed16,
 #                   PSNR against the reference, ms per frame and ARM926 instructions per frame
@@ -20,6 +21,9 @@
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
+#   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
+#   make qemu-m3    play the intro on the emulated OLED in QEMU's window
+#   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
@@ -360,7 +364,7 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
@@ -413,7 +417,7 @@ qemu-bench: setup-arm
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/stress-fixed \
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/m3 $(BUILD)/qemu-m3 $(BUILD)/stress-fixed \
 	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
 	       $(PLAYERS)
 
