@@ -6,8 +6,9 @@
 #                   headless into build/out/intro/ with a progress bar, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
-#                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
-#                   under QEMU (instructions per frame, fps at 200 MHz); QUICK=1: a smoke run
+#                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
+#                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
+#                   QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
 #   make tradeoff   accuracy against cost: render options one at a time, float, fixed and fixed16,
 #                   PSNR against the reference, ms per frame and ARM926 instructions per frame
@@ -22,6 +23,9 @@
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
 #   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
 #                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
+#   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
+#   make qemu-m3    play the intro on the emulated OLED in QEMU's window
+#   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
@@ -94,7 +98,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS)))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs
+        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -208,7 +212,7 @@ PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector
-PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none
+PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
 
@@ -288,6 +292,50 @@ $(PROFILE_PLUGIN): platform/arm/qemu_profile.c
 	@mkdir -p $(@D)
 	$(CC) -std=c11 $(WARN) -O2 -shared -fPIC -fvisibility=hidden -o $@ $<
 
+# ---- Cortex-M3 image: bare metal for qemu-system-arm -M lm3s6965evb (platform/m3/) --------
+# The same core and src/app/intro.c at the OLED's 128x64, over the M3 backend: Thumb-2, soft-float
+# ABI, libfixmath compiled from the same fetched source. make m3 builds it and prints its sizes;
+# qemu-m3 plays it on the emulated OLED; qemu-m3-frames renders FRAMES into build/qemu-m3/.
+M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
+M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINTRO_W=128 -DINTRO_H=64
+M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
+              -Wl,--no-warn-rwx-segments
+M3_OBJ := $(BUILD)/obj/m3-fixed
+M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/m3/m3.c $(GEN)/scene_intro.c) \
+           $(M3_OBJ)/start.o
+M3_ELF := $(BUILD)/m3/intro-fixed.elf
+M3_FRAMES ?= 0 425 875
+
+$(M3_OBJ)/%.o: %.c | $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(BASE_CFLAGS) $(or $(M3_COLD_OPT),$(OPT)) $(M3_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
+# The command line runs once per command, outside the counted rendering: built for size.
+$(M3_OBJ)/src/app/intro.o $(M3_OBJ)/src/scene/knobs.o: M3_COLD_OPT := -Os
+$(M3_OBJ)/start.o: platform/m3/start.S
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M3_ARCH) -c $< -o $@
+$(M3_OBJ)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) -std=c11 $(OPT) $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$*.c -o $@
+$(M3_OBJ)/libfixmath.a: $(patsubst %.c,$(M3_OBJ)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+$(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M3_LDFLAGS) -Wl,-Map=$@.map -o $@ $(M3_OBJS) $(M3_OBJ)/libfixmath.a -lc -lgcc
+-include $(M3_OBJS:.o=.d)
+
+m3: setup-arm
+	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@tests/m3_check.sh --print
+
+qemu-m3: setup-gui
+	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@platform/m3/qemu.sh play $(SETTINGS)
+
+qemu-m3-frames: setup-arm
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed
+	@platform/m3/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
+
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
 $(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o \
@@ -322,7 +370,7 @@ run: setup
 	@src/tools/run-intro.sh $(if $(filter command line,$(origin REAL)),$(REAL),$(RUN_REAL))
 
 test: setup-test
-	@$(MAKE) --no-print-directory all san arm fuzz-progs
+	@$(MAKE) --no-print-directory all san arm m3 fuzz-progs
 	@tests/run.sh
 
 SECONDS ?= 60
@@ -336,7 +384,7 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
@@ -394,7 +442,7 @@ qemu-profile: setup-arm
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/stress-fixed \
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/m3 $(BUILD)/qemu-m3 $(BUILD)/stress-fixed \
 	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
 	       $(PLAYERS)
 

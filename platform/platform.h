@@ -4,7 +4,9 @@
  * frames back through plat_frame_present. Pixels are 0x00RRGGBB, `stride` pixels per row.
  * Backends: the desktop, platform/headless.c (image files, clock, main) with threads.c (worker
  * threads) and sdl.c (a window through SDL2); platform/arm/ (bare-metal ARM926 on QEMU's
- * versatilepb board: PL110 framebuffer, UART, semihosting files).
+ * versatilepb board: PL110 framebuffer, UART, semihosting files); platform/m3/ (bare-metal
+ * Cortex-M3 on QEMU's lm3s6965evb: a 128x64 grey OLED that keeps its own pixels, so frames reach
+ * it band by band and no frame is ever in RAM).
  */
 #ifndef FIXRAY_PLATFORM_H
 #define FIXRAY_PLATFORM_H
@@ -37,6 +39,33 @@ uint64_t plat_time_ns(void);
 
 /* Writes one line of text (no newline in `line`) to the log: standard error, or the UART. */
 void plat_log(const char *line);
+
+/* ---- the boards: a frame handed over band by band (platform/arm/, platform/m3/) ------------ */
+
+/* Starts a frame of width x height that the program hands over in bands of whole rows, top to
+ * bottom. Sets f->width, f->stride and f->height: the most rows a band may have, the whole frame
+ * where there is a framebuffer (ARM926), a few rows where the display keeps its own pixels (M3).
+ * dest as for plat_frame_present, written as the bands come. Returns 0, or -1 after logging
+ * (a frame larger than the board's, a file that cannot be created). */
+int plat_band_begin(plat_frame *f, int width, int height, const char *dest);
+
+/* The memory for rows y0 .. y0 + rows - 1 of the frame begun, rows <= the f->height that
+ * plat_band_begin set, y0 the row after the previous band's: row y0 first, f->stride apart. */
+uint32_t *plat_band_rows(int y0, int rows);
+
+/* Hands over the band of the last plat_band_rows, its pixels rendered. The band that ends the
+ * frame also shows it and finishes its file. Returns 0, or -1 after logging: the frame is then
+ * abandoned and no file is left. */
+int plat_band_present(void);
+
+/* A pixel's grey on a 16-level display (the M3's OLED, and rt-cmp --oled on the host): luma
+ * (77 R + 150 G + 29 B) / 256, rounded, then quantised to 0..15, rounded. The display shows
+ * level n as 17 n. */
+static inline unsigned plat_grey4(uint32_t rgb)
+{
+    unsigned y = (77u * (rgb >> 16 & 255) + 150u * (rgb >> 8 & 255) + 29u * (rgb & 255) + 128) >> 8;
+    return (y * 15 + 127) / 255;
+}
 
 /* ---- desktop only: the program's name, for messages (platform/headless.c) ------------------ */
 const char *plat_program(void);

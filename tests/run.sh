@@ -625,7 +625,7 @@ for real in fixed float; do
   fi
 done
 
-# ---- scripts that print ok/FAIL lines: the player and threads, the ARM926 images under QEMU ----
+# ---- scripts that print ok/FAIL lines: the player and threads, the ARM926 and M3 images under QEMU ----
 run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL line fails too
   local log=$T/$(basename "$1" .sh).log st before=$failed line
   "$1" >"$log" 2>&1
@@ -641,6 +641,7 @@ run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL l
 }
 run_part tests/play.sh
 run_part tests/arm.sh
+run_part tests/m3.sh
 
 # ---- make bench's script, QUICK=1: runs end to end and writes a well-formed table ------------
 # Content, not timings: every configuration has one row, worst >= mean > 0, the fps follow from
@@ -671,7 +672,16 @@ if QUICK=1 tests/bench_all.sh -o "$bench_md" >"$T/bench-quick.out" 2>"$T/bench-q
       }
     }
     /^[\\][*] ARM926 fps: [*][*]at a 200 MHz clock, assuming one instruction per cycle/ { label = 1 }
+    /^[|] Cortex-M3, QEMU [|]/ {
+      m3++; m = num($6); w = num($7); fm = num($8); fw = num($9)
+      if ($3 != "fixed" || $4 != "128x64" || $6 !~ / M instructions$/ || $8 !~ /[*][*]$/ || !(m > 0 && w >= m) ||
+          !near(fm, 50 / m, 0.0051) || !near(fw, 50 / w, 0.0051))
+        print "Cortex-M3 fps do not follow from 50 MHz / instructions: " $0
+    }
+    /^[\\][*][\\][*] Cortex-M3 fps: [*][*]at the LM3S6965.s 50 MHz, assuming one instruction per cycle/ { m3label = 1 }
     END {
+      if (m3 != 1) print m3 + 0 " Cortex-M3 rows, expected 1"
+      if (!m3label) print "no 50 MHz / one instruction per cycle label for the Cortex-M3"
       if (!cpu) print "no CPU line"
       if (!head) print "no table header"
       if (!label) print "no 200 MHz / one instruction per cycle label"
@@ -685,7 +695,7 @@ if QUICK=1 tests/bench_all.sh -o "$bench_md" >"$T/bench-quick.out" 2>"$T/bench-q
   grep -q 'bench: desktop, round 1/1, frame 3/3' "$T/bench-quick.err" && grep -q 'qemu-bench: float image.*frames in' "$T/bench-quick.err" ||
     problems+="${problems:+$nl}no progress on standard error"
   if [ -z "$problems" ]; then
-    pass "make bench's script (QUICK=1): $(grep -c '^| desktop' "$bench_md") desktop and $(grep -c '^| ARM926' "$bench_md") ARM926 rows, fps consistent with the times and instruction counts"
+    pass "make bench's script (QUICK=1): $(grep -c '^| desktop' "$bench_md") desktop, $(grep -c '^| ARM926' "$bench_md") ARM926 and $(grep -c '^| Cortex-M3' "$bench_md") Cortex-M3 rows, fps consistent with the times and instruction counts"
   else
     fail "make bench's script (QUICK=1) wrote a malformed $bench_md:"
     sed 's/^/       /' <<<"$problems"

@@ -422,6 +422,62 @@ static void test_bands(void **state)
     }
 }
 
+/* Bands in order into memory that holds one band (rt_render_band_into), as a board without a
+ * frame in RAM renders: with the shared rows of corners kept, the frame and every statistic
+ * equal one rt_render's; without, the pixels are the same but the corners on the edges between
+ * bands are traced twice. No band writes outside its rows. */
+static void test_bands_into(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    one_sphere_scene(&s, 0.4, -0.3, 2.0);
+    rt_scene_prepare(&s);
+    static uint32_t frame[W * H], band[W * (RT_GRID_MAX + 2)];
+    const int sizes[][2] = {{1, 1}, {7, 1}, {1, 9}, {W, H}, {W - 1, H - 3}, {33, 65}, {W, 64}};
+    const int grids[] = {2, 4, 8, 16};
+    for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
+        for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
+            for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
+                int w = sizes[n][0], h = sizes[n][1];
+                const rt_params p = {
+                    .depth = 2, .mode = mode, .grid = grids[g], .threshold = TS_THRESHOLD};
+                rt_view v;
+                rt_view_init(&v, &s.camera, w, h);
+                rt_stats whole = {0};
+                rt_render(&s, &v, &p, adpx, w, &whole, work, NULL);
+                int count = rt_render_band_count(&p, h);
+                for (int keep = 0; keep <= 1; keep++) {
+                    rt_stats st = {0};
+                    memset(frame, 0xAB, sizeof frame);
+                    int next = 0;
+                    for (int b = 0; b < count; b++) {
+                        int y0, rows;
+                        rt_render_band_rows(&p, h, b, count, &y0, &rows);
+                        assert_int_equal(y0, next); /* in order, no gap, no overlap */
+                        assert_true(rows >= 1 && rows <= (mode ? grids[g] + 1 : 1));
+                        next = y0 + rows;
+                        memset(band, 0xCD, sizeof band);
+                        rt_render_band_into(&s, &v, &p, band, w, &st, work, NULL, b, count,
+                                            keep && b);
+                        for (size_t i = (size_t)(rows * w); i < sizeof band / sizeof *band; i++)
+                            assert_int_equal(band[i], 0xCDCDCDCD);
+                        memcpy(frame + y0 * w, band, (size_t)(rows * w) * sizeof *band);
+                    }
+                    assert_int_equal(next, h);
+                    assert_memory_equal(frame, adpx, (size_t)(w * h) * sizeof *adpx);
+                    if (keep || mode == RT_MODE_FULL || count == 1)
+                        assert_memory_equal(&st, &whole, sizeof st);
+                    else
+                        assert_int_equal(
+                            st.rays_primary,
+                            whole.rays_primary +
+                                (uint32_t)((count - 1) * (w > 1 ? (w - 2) / grids[g] + 2 : 1)));
+                }
+            }
+        }
+    }
+}
+
 /* Adaptive recursion control: rays weighing less than min_contrib are not cast, and their
  * share is all the picture loses. */
 static void test_min_contrib(void **state)
@@ -466,6 +522,7 @@ int main(void)
         cmocka_unit_test(test_reflected_outline),
         cmocka_unit_test(test_sizes),
         cmocka_unit_test(test_bands),
+        cmocka_unit_test(test_bands_into),
         cmocka_unit_test(test_min_contrib),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -218,6 +218,37 @@ int plat_frame_present(const plat_frame *f, const char *dest)
     return dest ? arm_save_ppm(f, dest) : 0;
 }
 
+/* Bands: the framebuffer holds the whole frame, so a band is a window into it, and the frame is
+ * presented once its last row has come. */
+static plat_frame arm_band;
+static const char *arm_band_dest;
+static int arm_band_end; /* the row after the last band's */
+
+int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
+{
+    if (plat_frame_acquire(&arm_band, width, height) != 0)
+        return -1;
+    *f = arm_band;
+    arm_band_dest = dest;
+    arm_band_end = 0;
+    return 0;
+}
+
+uint32_t *plat_band_rows(int y0, int rows)
+{
+    arm_band_end = y0 + rows;
+    return arm_band.pixels + y0 * arm_band.stride;
+}
+
+int plat_band_present(void)
+{
+    if (arm_band_end < arm_band.height)
+        return 0;
+    int rc = plat_frame_present(&arm_band, arm_band_dest);
+    plat_frame_release(&arm_band);
+    return rc;
+}
+
 /* Logs "ram: ..." with the bytes of .data, .bss and the deepest stack use seen. */
 static int arm_report_ram(void)
 {

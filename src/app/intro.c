@@ -3,18 +3,23 @@
  * Commands, from the platform's argument list (on the ARM board: QEMU's semihosting
  * `arg=` values, the first being the program name):
  *   play                     loop the intro in real time on the display (the default)
- *   frames [--out P] N...    render intro frames N (at the scene's fps) at 320x240, show each
- *                            and save it as P-NNNN.ppm; log `frame=N instructions=M`
+ *   frames [--out P] N...    render intro frames N (at the scene's fps), show each and save it
+ *                            as P-NNNN.ppm; log `frame=N instructions=M`
  *   bench FIRST LAST STEP    render frames FIRST, FIRST+STEP, ... <= LAST without saving them;
  *                            log `frame=N instructions=M` for each, then the mean and worst
  *   show N                   render frame N, show it, log `shown frame=N` and keep it on the
  *                            display until stopped (lets a test grab the display)
  * Every command also takes the render settings of `render` (src/scene/knobs.h): --depth, --mode,
  * --grid (4 or 8: the working storage of grids 2 and 16 does not fit the board's RAM budget),
- * --threshold, --min-contrib, --octaves, --footprint; their defaults are render's. A frame is
- * byte for byte `build/rt-fixed render --size 320x240 --frame N` with the same settings.
- * `instructions` is the platform clock in nanoseconds across rt_render: under QEMU with
- * `-icount shift=0` a guest instruction advances that clock by exactly 1 ns.
+ * --threshold, --min-contrib, --octaves, --footprint; their defaults are render's. Frames are INTRO_W x
+ * INTRO_H, the board's display (320x240 by default, the ARM926's; 128x64 on the M3, set by the
+ * Makefile); a frame is byte for byte `build/rt-fixed render --size WxH --frame N` with the same
+ * settings. It goes to the platform band by band (plat_band_*): one band where the platform
+ * holds a whole frame, else a row of squares (adaptive) or of pixels (full) at a time, each band
+ * taking the row of corners it shares with the one before from the working storage.
+ * `instructions` is the platform clock in nanoseconds across the rendering of the bands (not the
+ * handing over): under QEMU with `-icount shift=0` a guest instruction advances that clock by
+ * exactly 1 ns.
  * Nothing here allocates: the scene and the adaptive mode's working storage are static.
  */
 #include <stddef.h>
@@ -28,8 +33,12 @@
 /* The intro, scenes/intro.scene compiled in at build time (rt-scenec). */
 extern const scn_desc scn_intro;
 
+#ifndef INTRO_W
 #define INTRO_W 320
+#endif
+#ifndef INTRO_H
 #define INTRO_H 240
+#endif
 
 /* Working storage of the adaptive mode at INTRO_W (see rt_render_work_size): two rows of
  * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
@@ -103,17 +112,34 @@ static int intro_streq(const char *a, const char *b)
 
 static long intro_last_frame(void) { return (long)scn_intro.duration_ms * scn_intro.fps / 1000; }
 
-/* Renders the intro at time ms into frame f; returns the platform nanoseconds it took. */
-static uint64_t intro_render(const plat_frame *f, int32_t ms)
+/* Renders the intro at time ms band by band to the display and, with dest, to that file; *ns
+ * gets the platform nanoseconds spent rendering (handing the bands over not counted). Returns 0,
+ * or 1 after the platform logged why. */
+static int intro_render(int32_t ms, const char *dest, uint64_t *ns)
 {
     scn_eval(&scn_intro, ms, &intro_scene);
     rt_params p = knobs_params(&intro_knobs, intro_scene.depth);
     rt_view v;
-    rt_view_init(&v, &intro_scene.camera, f->width, f->height);
+    rt_view_init(&v, &intro_scene.camera, INTRO_W, INTRO_H);
+    plat_frame f;
+    if (plat_band_begin(&f, INTRO_W, INTRO_H, dest) != 0)
+        return 1;
+    /* Bands of a row of squares hold at most grid + 1 <= 9 rows (app_main checks the grid). */
+    int nb = f.height >= INTRO_H ? 1 : rt_render_band_count(&p, INTRO_H);
     rt_stats stats = {0};
-    uint64_t t0 = plat_time_ns();
-    rt_render(&intro_scene, &v, &p, f->pixels, f->stride, &stats, intro_work, NULL);
-    return plat_time_ns() - t0;
+    *ns = 0;
+    for (int b = 0; b < nb; b++) {
+        int y0, rows;
+        rt_render_band_rows(&p, INTRO_H, b, nb, &y0, &rows);
+        uint32_t *px = plat_band_rows(y0, rows);
+        uint64_t t0 = plat_time_ns();
+        rt_render_band_into(&intro_scene, &v, &p, px, f.stride, &stats, intro_work, NULL, b, nb,
+                            b > 0);
+        *ns += plat_time_ns() - t0;
+        if (plat_band_present() != 0)
+            return 1;
+    }
+    return 0;
 }
 
 static int32_t intro_frame_ms(long frame) { return (int32_t)(frame * 1000 / scn_intro.fps); }
@@ -122,16 +148,12 @@ static int32_t intro_frame_ms(long frame) { return (int32_t)(frame * 1000 / scn_
 static int intro_play(void)
 {
     uint64_t start = plat_time_ns(), shown = 0, t_fps = start;
-    plat_log("intro: playing at 320x240, looping");
+    intro_log2("intro: playing looped, width ", INTRO_W, ", height ", INTRO_H);
     for (;;) {
-        plat_frame f;
-        if (plat_frame_acquire(&f, INTRO_W, INTRO_H) != 0)
-            return 1;
-        uint64_t now = plat_time_ns();
+        uint64_t now = plat_time_ns(), ns;
         int32_t ms = (int32_t)((now - start) / 1000000u % (uint64_t)scn_intro.duration_ms);
-        intro_render(&f, ms);
-        plat_frame_present(&f, NULL);
-        plat_frame_release(&f);
+        if (intro_render(ms, NULL, &ns) != 0)
+            return 1;
         shown++;
         now = plat_time_ns();
         if (now - t_fps >= 5000000000u) { /* every 5 s of the board's clock */
@@ -150,33 +172,26 @@ static int intro_play(void)
     }
 }
 
-/* Saves frame f as PREFIX-NNNN.ppm. */
-static int intro_save(const plat_frame *f, const char *prefix, long frame)
-{
-    intro_line path = {.n = 0};
-    intro_str(&path, prefix);
-    intro_str(&path, "-");
-    for (long d = 1000; d > 1 && frame < d; d /= 10)
-        intro_str(&path, "0");
-    intro_num(&path, (uint64_t)frame);
-    intro_str(&path, ".ppm");
-    return plat_frame_present(f, path.s);
-}
-
 /* Renders frame k and logs its instruction count; saves it as PREFIX-NNNN.ppm when prefix is
- * not NULL, else shows it. Adds the count to *sum and *worst. Returns 0 or 1. */
+ * not NULL (and shows it). Adds the count to *sum and *worst. Returns 0 or 1. */
 static int intro_one(long k, const char *prefix, uint64_t *sum, uint64_t *worst)
 {
-    plat_frame f;
-    if (plat_frame_acquire(&f, INTRO_W, INTRO_H) != 0)
+    intro_line path = {.n = 0};
+    if (prefix) {
+        intro_str(&path, prefix);
+        intro_str(&path, "-");
+        for (long d = 1000; d > 1 && k < d; d /= 10)
+            intro_str(&path, "0");
+        intro_num(&path, (uint64_t)k);
+        intro_str(&path, ".ppm");
+    }
+    uint64_t ns;
+    if (intro_render(intro_frame_ms(k), prefix ? path.s : NULL, &ns) != 0)
         return 1;
-    uint64_t ns = intro_render(&f, intro_frame_ms(k));
     intro_log2("frame=", (uint64_t)k, " instructions=", ns);
-    int rc = prefix ? intro_save(&f, prefix, k) : plat_frame_present(&f, NULL);
-    plat_frame_release(&f);
     *sum += ns;
     *worst = ns > *worst ? ns : *worst;
-    return rc == 0 ? 0 : 1;
+    return 0;
 }
 
 static int intro_summary(uint64_t n, uint64_t sum, uint64_t worst)

@@ -287,10 +287,31 @@ void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uin
  * pixels (full); more bands than this leave some empty. */
 int rt_render_band_count(const rt_params *p, int height);
 
-/* The adaptive mode of rt_render_band (subsample.c). */
+/* The pixel rows band `band` of `nbands` of rt_render_band writes in a frame of `height` rows:
+ * rows *y0 .. *y0 + *rows - 1 (*rows = 0: an empty band). Bands in order cover the frame. */
+void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows);
+
+/* rt_render_band into memory that holds only the band: `rows` is the band's first row (pixel row
+ * y0 of rt_render_band_rows), rows `stride` pixels apart. With `keep`, the previous call with
+ * this `work` rendered band - 1 of the same frame (scene, view, params, nbands): the row of corner
+ * samples the two bands share is taken from `work` instead of being traced again, so bands
+ * rendered in order trace what one rt_render traces, and give its pixels and stats. keep = 0
+ * traces it (any band, any order). A display that keeps its own pixels needs no frame in RAM. */
+void rt_render_band_into(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *rows,
+                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
+                         int nbands, int keep);
+
+/* What the pixel memory handed to a band holds. */
+enum rt_band_memory {
+    RT_BAND_FRAME, /* the whole frame (rt_render_band) */
+    RT_BAND_ONLY,  /* only the band, from its first row (rt_render_band_into) */
+    RT_BAND_KEEP   /* only the band, and `work` holds its top row of corners (keep) */
+};
+
+/* The adaptive mode of rt_render_band and rt_render_band_into (subsample.c). */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands);
+                        int nbands, enum rt_band_memory mem);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -168,8 +168,9 @@ typedef struct ss_ctx {
     const rt_view *view;
     const rt_params *params;
     rt_stats *stats;
-    uint32_t *pixels;
+    uint32_t *pixels; /* pixel row py0 of the frame */
     int stride;
+    int py0;
     uint8_t *traced;
     int thr8;       /* contribution threshold in 1/255 steps */
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
@@ -231,7 +232,7 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
         }
     }
     int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
-    uint32_t *dst = c->pixels + (long)y0 * c->stride + x0;
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
     ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], ss_rgb_of(k[0]->color),
             ss_rgb_of(k[1]->color), ss_rgb_of(k[2]->color), ss_rgb_of(k[3]->color));
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
@@ -261,7 +262,7 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
 
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands)
+                        int nbands, enum rt_band_memory mem)
 {
     const int g = p->grid, width = v->width, height = v->height;
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
@@ -275,6 +276,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .stats = stats,
                 .pixels = pixels,
                 .stride = stride,
+                .py0 = mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
                 .traced = traced,
                 .thr8 = r_to_byte(p->threshold),
                 .lstride = g + 1};
@@ -282,9 +284,16 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = ss_weight(i, n);
 
+    /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
+     * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
     rt_sample *top = work, *bot = top + ncols + 1;
     c.lat = bot + ncols + 1;
-    ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
+    if (r0 % 2) {
+        top = bot;
+        bot = work;
+    }
+    if (mem != RT_BAND_KEEP)
+        ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
         if (h == 0)
@@ -314,5 +323,24 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         rt_sample *t = top;
         top = bot;
         bot = t;
+    }
+}
+
+void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows)
+{
+    *y0 = *rows = 0;
+    if (nbands < 1 || band < 0 || band >= nbands || height < 1)
+        return;
+    int n = rt_render_band_count(p, height);
+    int b0 = (int)((long)n * band / nbands), b1 = (int)((long)n * (band + 1) / nbands);
+    if (b0 == b1)
+        return;
+    if (p->mode == RT_MODE_ADAPTIVE) {
+        /* rows of squares b0 .. b1 - 1: each owns its top row, the last one the frame's end */
+        *y0 = ss_corner(b0, p->grid, height);
+        *rows = (b1 == n ? height : ss_corner(b1, p->grid, height)) - *y0;
+    } else {
+        *y0 = b0;
+        *rows = b1 - b0;
     }
 }

@@ -1,4 +1,4 @@
-/* cmp.c: rt-cmp: compares two images of equal size and reports PSNR and pixel differences. */
+/* cmp.c: rt-cmp: compares two images of equal size and reports PSNR and pixel differences; --oled shows an image as the M3 board's OLED does. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -6,6 +6,7 @@
 
 #include "image.h"
 #include "outpath.h"
+#include "platform.h"
 
 /* Each channel of the difference picture is |a - b| times this, clamped to 255. */
 #define CMP_DIFF_GAIN 16
@@ -35,23 +36,77 @@ static int cmp_box(img_rgb *im, int n)
     im->height = h;
     return 0;
 }
+/* QEMU draws each OLED pixel as a square of this side (hw/display/ssd0323.c). */
+#define CMP_OLED_MAGNIFY 4
 
 static int cmp_usage(FILE *f)
 {
     fprintf(f,
             "usage: rt-cmp A B [--diff D.png] [--box N]\n"
+            "       rt-cmp --oled IMAGE OUT.ppm\n"
             "Compares two images of equal size (PNG or PPM) and prints one line:\n"
             "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
             "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
             "more than 8).\n"
             "--box N: A is N times B's width and height (a supersampled reference) and is\n"
-            "box-filtered down to B's size first, each pixel the mean of N x N; N in 1..%d.\n",
-            CMP_DIFF_GAIN, CMP_BOX_MAX);
+            "box-filtered down to B's size first, each pixel the mean of N x N; N in 1..%d.\n"
+            "--oled writes IMAGE as the M3 board's OLED shows it in QEMU (its screendump): each\n"
+            "pixel at 16 levels of grey (plat_grey4), %dx%d pixels of grey 17 x level.\n",
+            CMP_DIFF_GAIN, CMP_BOX_MAX, CMP_OLED_MAGNIFY, CMP_OLED_MAGNIFY);
     return f == stdout ? 0 : 2;
+}
+
+/* rt-cmp --oled IMAGE OUT */
+static int cmp_oled(const char *in, const char *out)
+{
+    char err[512];
+    if (!img_path_ok(out)) {
+        fprintf(stderr, "rt-cmp: %s: the OLED picture must end in .png or .ppm\n", out);
+        return 2;
+    }
+    if (outpath_check(out, err, sizeof err) != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        return 2;
+    }
+    img_rgb a;
+    if (img_load(in, &a, err, sizeof err) != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        return 2;
+    }
+    int w = a.width * CMP_OLED_MAGNIFY, h = a.height * CMP_OLED_MAGNIFY;
+    uint32_t *px = malloc((size_t)w * (size_t)h * sizeof *px);
+    if (!px) {
+        img_free(&a);
+        fprintf(stderr, "rt-cmp: out of memory\n");
+        return 1;
+    }
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p =
+                a.rgb + 3 * ((long)(y / CMP_OLED_MAGNIFY) * a.width + x / CMP_OLED_MAGNIFY);
+            uint32_t grey = 17u * plat_grey4((uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2]);
+            px[(long)y * w + x] = grey << 16 | grey << 8 | grey;
+        }
+    }
+    img_free(&a);
+    int rc = img_save(out, px, w, h, w, err, sizeof err);
+    free(px);
+    if (rc != 0) {
+        fprintf(stderr, "rt-cmp: %s\n", err);
+        return 1;
+    }
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
+    if (argc >= 2 && strcmp(argv[1], "--oled") == 0) {
+        if (argc != 4) {
+            fprintf(stderr, "rt-cmp: --oled wants IMAGE OUT.ppm (see rt-cmp --help)\n");
+            return 2;
+        }
+        return cmp_oled(argv[2], argv[3]);
+    }
     const char *path[2] = {NULL, NULL}, *diff = NULL;
     int npath = 0, box = 1;
     for (int i = 1; i < argc; i++) {

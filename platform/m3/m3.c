@@ -1,0 +1,479 @@
+/* m3.c: the bare-metal Cortex-M3 backend (QEMU lm3s6965evb): SSD0323 OLED over SSI, bands instead of a frame, UART log, SysTick clock, semihosting files, arguments and exit.
+ *
+ * The Stellaris LM3S6965 has 64 KiB of SRAM and its evaluation board a 128x64 OLED with 16 grey
+ * levels behind an SSD0323 controller, which keeps the picture itself: frames come here band by
+ * band (plat_band_*), each band is turned into grey and sent over the SSI (PL022) bus, and with a
+ * file name its colours also go to the host through semihosting. No frame is ever held in RAM.
+ * What QEMU's models do (hw/display/ssd0323.c, hw/arm/stellaris.c, hw/ssi/pl022.c): the OLED
+ * takes column (0x15) and row (0x75) windows, 64 bytes a row, the left pixel in the high nibble,
+ * and ignores geometry and brightness commands; GPIO C7 low = command, high = data; GPIO D0 high
+ * selects the OLED (and deselects the SD card); the PL022 stops sending while its receive FIFO is
+ * full, so every byte received is read back. The system clock is set to the board's 50 MHz
+ * (PLL 200 MHz / 4), 20 ns a SysTick step.
+ */
+#include <stdint.h>
+
+#include "platform.h"
+
+#define M3_W 128
+#define M3_H 64
+/* Rows a band may have: a row of the intro's grid-8 squares and the frame's last row. */
+#define M3_BAND_ROWS 9
+
+#define M3_REG(a) (*(volatile uint32_t *)(a))
+
+/* System control: run-mode clock gating, the clock configuration and the PLL-lock flag. */
+#define M3_RIS M3_REG(0x400fe050u)
+#define M3_RCC M3_REG(0x400fe060u)
+#define M3_RCGC1 M3_REG(0x400fe104u)
+#define M3_RCGC2 M3_REG(0x400fe108u)
+#define M3_RCC_SYSDIV(n) ((uint32_t)(n) << 23) /* the PLL's 200 MHz / (n + 1) */
+#define M3_RCC_SYSDIV_MASK (15u << 23)
+#define M3_RCC_USESYSDIV (1u << 22)
+#define M3_RCC_PWRDN (1u << 13)
+#define M3_RCC_BYPASS (1u << 11)
+#define M3_RCC_XTAL_MASK (15u << 6)
+#define M3_RCC_XTAL_8MHZ (14u << 6)
+#define M3_RCC_OSCSRC_MASK (3u << 4)
+#define M3_PLL_LOCKED (1u << 6)
+#define M3_CLOCK_NS 20u /* 50 MHz */
+
+/* GPIO ports (PL061): DATA is addressed through a mask in address bits 9:2. */
+#define M3_GPIO_A 0x40004000u
+#define M3_GPIO_C 0x40006000u
+#define M3_GPIO_D 0x40007000u
+#define M3_GPIO_DATA(port, pins) M3_REG((port) + ((uint32_t)(pins) << 2))
+#define M3_GPIO_DIR(port) M3_REG((port) + 0x400u)
+#define M3_GPIO_AFSEL(port) M3_REG((port) + 0x420u)
+#define M3_GPIO_DEN(port) M3_REG((port) + 0x51cu)
+#define M3_OLED_DC (1u << 7) /* port C: low command, high data */
+#define M3_SD_CS (1u << 0)   /* port D: high keeps the SD card off the bus, the OLED on it */
+#define M3_SSI_PINS (1u << 2 | 1u << 3 | 1u << 5) /* port A: clock, frame, transmit */
+
+/* SSI0 (PL022). */
+#define M3_SSI_CR0 M3_REG(0x40008000u)
+#define M3_SSI_CR1 M3_REG(0x40008004u)
+#define M3_SSI_DR M3_REG(0x40008008u)
+#define M3_SSI_SR M3_REG(0x4000800cu)
+#define M3_SSI_CPSR M3_REG(0x40008010u)
+#define M3_SSI_TNF (1u << 1)
+#define M3_SSI_RNE (1u << 2)
+#define M3_SSI_BSY (1u << 4)
+
+/* UART0 (PL011), 115200 baud at 50 MHz. */
+#define M3_UART_DR M3_REG(0x4000c000u)
+#define M3_UART_FR M3_REG(0x4000c018u)
+#define M3_UART_IBRD M3_REG(0x4000c024u)
+#define M3_UART_FBRD M3_REG(0x4000c028u)
+#define M3_UART_LCRH M3_REG(0x4000c02cu)
+#define M3_UART_CTL M3_REG(0x4000c030u)
+#define M3_UART_TXFF (1u << 5)
+
+/* SysTick and the interrupt control register's "SysTick pending" bit. */
+#define M3_SYST_CSR M3_REG(0xe000e010u)
+#define M3_SYST_RVR M3_REG(0xe000e014u)
+#define M3_SYST_CVR M3_REG(0xe000e018u)
+#define M3_ICSR M3_REG(0xe000ed04u)
+#define M3_PENDSTSET (1u << 26)
+#define M3_SYST_MAX 0xffffffu
+
+/* Semihosting operations (ARM's semihosting specification), trapped by `bkpt 0xab`. */
+enum {
+    M3_SYS_OPEN = 0x01,
+    M3_SYS_CLOSE = 0x02,
+    M3_SYS_WRITE = 0x05,
+    M3_SYS_REMOVE = 0x0e,
+    M3_SYS_RENAME = 0x0f,
+    M3_SYS_GET_CMDLINE = 0x15,
+    M3_SYS_EXIT_EXTENDED = 0x20
+};
+#define M3_OPEN_WB 5                 /* fopen mode "wb" */
+#define M3_EXIT_APPLICATION 0x20026u /* ADP_Stopped_ApplicationExit */
+
+/* From link.ld. */
+extern uint32_t __data_start[], __data_end[], __bss_start[], __bss_end[];
+extern uint32_t __stack_bottom[], __stack_top[];
+extern const char M3_STACK_PAINT[]; /* its address is the paint pattern */
+#define M3_PAINT ((uint32_t)(uintptr_t)M3_STACK_PAINT)
+
+static volatile uint32_t m3_wraps; /* SysTick periods elapsed */
+
+static int m3_semi(uint32_t op, void *arg)
+{
+    register uint32_t r0 __asm__("r0") = op;
+    register void *r1 __asm__("r1") = arg;
+    __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
+    return (int)r0;
+}
+
+static uint32_t m3_strlen(const char *s)
+{
+    uint32_t n = 0;
+    while (s[n])
+        n++;
+    return n;
+}
+
+static void m3_putc(char c)
+{
+    while (M3_UART_FR & M3_UART_TXFF)
+        ;
+    M3_UART_DR = (uint32_t)(unsigned char)c;
+}
+
+static void m3_puts(const char *s)
+{
+    while (*s)
+        m3_putc(*s++);
+}
+
+void plat_log(const char *line)
+{
+    m3_puts(line);
+    m3_putc('\n');
+}
+
+/* Logs "a" + the file name + "b" as one line. */
+static void m3_log_file(const char *a, const char *file, const char *b)
+{
+    m3_puts(a);
+    m3_puts(file);
+    plat_log(b);
+}
+
+/* The SysTick exception (start.S's vector table): one more period of 2^24 steps. */
+void m3_systick(void);
+void m3_systick(void) { m3_wraps++; }
+
+uint64_t plat_time_ns(void)
+{
+    uint32_t primask;
+    __asm__ volatile("mrs %0, primask\n\tcpsid i" : "=r"(primask)::"memory");
+    uint32_t wraps = m3_wraps, v = M3_SYST_CVR;
+    if (M3_ICSR & M3_PENDSTSET) { /* wrapped, its exception not taken yet */
+        v = M3_SYST_CVR;
+        wraps++;
+    }
+    __asm__ volatile("msr primask, %0" ::"r"(primask) : "memory");
+    uint64_t steps = ((uint64_t)wraps << 24) + (M3_SYST_MAX - v);
+    return steps * M3_CLOCK_NS;
+}
+
+/* ---- the OLED ------------------------------------------------------------------------------ */
+
+/* Waits until the bus is idle, reading back what the controller returned. */
+static void m3_ssi_drain(void)
+{
+    while (M3_SSI_SR & (M3_SSI_BSY | M3_SSI_RNE))
+        (void)M3_SSI_DR;
+}
+
+static void m3_ssi_put(uint32_t byte)
+{
+    while (!(M3_SSI_SR & M3_SSI_TNF))
+        ;
+    M3_SSI_DR = byte;
+    while (M3_SSI_SR & M3_SSI_RNE)
+        (void)M3_SSI_DR;
+}
+
+/* Sends n bytes as commands (data 0) or pixel data (data 1). */
+static void m3_oled_send(const uint8_t *b, int n, int data)
+{
+    m3_ssi_drain();
+    M3_GPIO_DATA(M3_GPIO_C, M3_OLED_DC) = data ? M3_OLED_DC : 0;
+    for (int i = 0; i < n; i++)
+        m3_ssi_put(b[i]);
+    m3_ssi_drain();
+}
+
+static void m3_oled_init(void)
+{
+    /* display off, horizontal address increment (remap: COM split and remap), contrast,
+     * normal display, display on */
+    static const uint8_t init[] = {0xae, 0xa0, 0x50, 0x81, 0x70, 0xa4, 0xaf};
+    m3_oled_send(init, (int)sizeof init, 0);
+}
+
+/* Rows y0 .. y0 + rows - 1 of the band buffer to the OLED, each pixel at 4 bits of grey. */
+static void m3_oled_rows(const uint32_t *px, int stride, int y0, int rows)
+{
+    const uint8_t window[6] = {0x15, 0, M3_W / 2 - 1, 0x75, (uint8_t)y0, (uint8_t)(y0 + rows - 1)};
+    m3_oled_send(window, 6, 0);
+    uint8_t line[M3_W / 2];
+    for (int y = 0; y < rows; y++) {
+        const uint32_t *p = px + y * stride;
+        for (int i = 0; i < M3_W / 2; i++)
+            line[i] = (uint8_t)(plat_grey4(p[2 * i]) << 4 | plat_grey4(p[2 * i + 1]));
+        m3_oled_send(line, M3_W / 2, 1);
+    }
+}
+
+/* ---- bands --------------------------------------------------------------------------------- */
+
+static uint32_t m3_band[M3_BAND_ROWS * M3_W];
+static struct {
+    int width, height; /* of the frame begun */
+    int y0, rows;      /* the band last given out */
+    const char *dest;  /* its name */
+    char tmp[128];     /* dest + ".tmp", written until the frame ends */
+} m3_frame;
+static int m3_fd = -1; /* the frame's PPM: semihosting handle, or -1 */
+
+/* Writes n bytes to a semihosting handle; 0 when all were written. */
+static int m3_write(int fd, const void *buf, uint32_t n)
+{
+    uint32_t a[3] = {(uint32_t)fd, (uint32_t)(uintptr_t)buf, n};
+    return m3_semi(M3_SYS_WRITE, a) == 0 ? 0 : -1;
+}
+
+/* v in decimal at buf; returns the number of digits. */
+static uint32_t m3_dec(char *buf, uint32_t v)
+{
+    char d[10];
+    uint32_t k = 0, n = 0;
+    do {
+        d[k++] = (char)('0' + v % 10);
+        v /= 10;
+    } while (v);
+    while (k)
+        buf[n++] = d[--k];
+    return n;
+}
+
+/* Closes the file of the frame begun; keeps it as dest when ok, else removes it. */
+static int m3_file_end(int ok)
+{
+    if (m3_fd < 0)
+        return 0;
+    uint32_t len = m3_strlen(m3_frame.dest);
+    uint32_t close_args[1] = {(uint32_t)m3_fd};
+    m3_fd = -1;
+    ok &= m3_semi(M3_SYS_CLOSE, close_args) == 0;
+    uint32_t rename_args[4] = {(uint32_t)(uintptr_t)m3_frame.tmp, len + 4,
+                               (uint32_t)(uintptr_t)m3_frame.dest, len};
+    if (ok && m3_semi(M3_SYS_RENAME, rename_args) == 0)
+        return 0;
+    uint32_t remove_args[2] = {(uint32_t)(uintptr_t)m3_frame.tmp, len + 4};
+    m3_semi(M3_SYS_REMOVE, remove_args);
+    m3_log_file("error: ", m3_frame.dest, ": write failed");
+    return -1;
+}
+
+int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
+{
+    if (width < 1 || height < 1 || width > M3_W || height > M3_H) {
+        plat_log("error: frames on this board are at most 128x64");
+        return -1;
+    }
+    m3_file_end(0); /* a frame left unfinished */
+    m3_frame.width = width;
+    m3_frame.height = height;
+    m3_frame.y0 = m3_frame.rows = 0;
+    m3_frame.dest = dest;
+    f->pixels = m3_band;
+    f->width = width;
+    f->stride = M3_W;
+    f->height = M3_BAND_ROWS < height ? M3_BAND_ROWS : height;
+    if (!dest)
+        return 0;
+    uint32_t len = m3_strlen(dest);
+    if (len + 5 > sizeof m3_frame.tmp) {
+        m3_log_file("error: ", dest, ": path too long");
+        return -1;
+    }
+    for (uint32_t i = 0; i < len; i++)
+        m3_frame.tmp[i] = dest[i];
+    for (uint32_t i = 0; i < 5; i++)
+        m3_frame.tmp[len + i] = ".tmp"[i];
+    uint32_t open_args[3] = {(uint32_t)(uintptr_t)m3_frame.tmp, M3_OPEN_WB, len + 4};
+    m3_fd = m3_semi(M3_SYS_OPEN, open_args);
+    if (m3_fd < 0) {
+        m3_log_file("error: ", m3_frame.tmp, ": cannot create (semihosting open failed)");
+        return -1;
+    }
+    char head[32];
+    uint32_t n = 0;
+    head[n++] = 'P';
+    head[n++] = '6';
+    head[n++] = '\n';
+    n += m3_dec(head + n, (uint32_t)width);
+    head[n++] = ' ';
+    n += m3_dec(head + n, (uint32_t)height);
+    for (const char *s = "\n255\n"; *s; s++)
+        head[n++] = *s;
+    if (m3_write(m3_fd, head, n) != 0)
+        return m3_file_end(0);
+    return 0;
+}
+
+uint32_t *plat_band_rows(int y0, int rows)
+{
+    m3_frame.y0 = y0;
+    m3_frame.rows = rows;
+    return m3_band;
+}
+
+int plat_band_present(void)
+{
+    int y0 = m3_frame.y0, rows = m3_frame.rows, w = m3_frame.width;
+    if (rows < 1 || rows > M3_BAND_ROWS || y0 < 0 || y0 + rows > m3_frame.height) {
+        plat_log("error: a band outside the frame, or larger than the band memory");
+        m3_file_end(0);
+        return -1;
+    }
+    if (w == M3_W)
+        m3_oled_rows(m3_band, M3_W, y0, rows);
+    if (m3_fd >= 0) {
+        /* Each row becomes its 3 w bytes of RGB in place (the band has been shown): byte 3 x + 2
+         * lies within pixel x, read before it is overwritten. */
+        for (int y = 0; y < rows; y++) {
+            const uint32_t *p = m3_band + y * M3_W;
+            uint8_t *rgb = (uint8_t *)(m3_band + y * M3_W);
+            for (int x = 0; x < w; x++) {
+                uint32_t v = p[x];
+                rgb[3 * x] = (uint8_t)(v >> 16);
+                rgb[3 * x + 1] = (uint8_t)(v >> 8);
+                rgb[3 * x + 2] = (uint8_t)v;
+            }
+            if (m3_write(m3_fd, rgb, (uint32_t)w * 3) != 0)
+                return m3_file_end(0);
+        }
+    }
+    return y0 + rows == m3_frame.height ? m3_file_end(1) : 0;
+}
+
+/* ---- start-up, the end of a run ------------------------------------------------------------ */
+
+/* Logs "ram: ..." with the bytes of .data, .bss and the deepest stack use seen; 1 when the
+ * stack reached the bottom of its reserve. */
+static int m3_report_ram(void)
+{
+    const uint32_t *w = __stack_bottom;
+    while (w < __stack_top && *w == M3_PAINT)
+        w++;
+    uint32_t data = (uint32_t)((__data_end - __data_start) * 4);
+    uint32_t bss = (uint32_t)((__bss_end - __bss_start) * 4);
+    uint32_t stack = (uint32_t)((__stack_top - w) * 4);
+    uint32_t v[4] = {data, bss, stack, data + bss + stack};
+    static const char *const names[4] = {"ram: data=", " bss=", " stack_peak=", " total="};
+    for (int i = 0; i < 4; i++) {
+        char d[10];
+        m3_puts(names[i]);
+        for (uint32_t k = 0, n = m3_dec(d, v[i]); k < n; k++)
+            m3_putc(d[k]);
+    }
+    plat_log(" bytes");
+    if (w == __stack_bottom) {
+        plat_log("error: the stack reached the bottom of its reserve (overflow)");
+        return 1;
+    }
+    return 0;
+}
+
+static void m3_exit(int status)
+{
+    uint32_t args[2] = {M3_EXIT_APPLICATION, (uint32_t)status};
+    m3_semi(M3_SYS_EXIT_EXTENDED, args);
+    for (;;)
+        ;
+}
+
+/* Called by start.S's m3_trap for any fault or unexpected exception: logs it and where it
+ * happened (the stacked pc), and ends the run with status 3. */
+void m3_fault(uint32_t pc, uint32_t ipsr);
+void m3_fault(uint32_t pc, uint32_t ipsr)
+{
+    static const char *const names[16] = {
+        "thread", "reset", "NMI", "HardFault", "MemManage", "BusFault", "UsageFault", "7",
+        "8",      "9",     "10",  "SVCall",    "DebugMon",  "13",       "PendSV",     "SysTick"};
+    uint32_t n = ipsr & 0x1ff;
+    m3_puts("error: CPU exception: ");
+    m3_puts(n < 16 ? names[n] : "interrupt");
+    m3_puts(" (pc=0x");
+    for (int i = 28; i >= 0; i -= 4)
+        m3_putc("0123456789abcdef"[(pc >> i) & 15]);
+    plat_log(")");
+    m3_exit(3);
+}
+
+/* 50 MHz from the PLL (8 MHz crystal, 200 MHz / 4), the way the chip's manual orders it. */
+static void m3_clock_init(void)
+{
+    uint32_t rcc = (M3_RCC | M3_RCC_BYPASS) & ~M3_RCC_USESYSDIV;
+    M3_RCC = rcc;
+    rcc = (rcc & ~(M3_RCC_XTAL_MASK | M3_RCC_OSCSRC_MASK | M3_RCC_PWRDN)) | M3_RCC_XTAL_8MHZ;
+    M3_RCC = rcc;
+    rcc = (rcc & ~M3_RCC_SYSDIV_MASK) | M3_RCC_SYSDIV(3) | M3_RCC_USESYSDIV;
+    M3_RCC = rcc;
+    for (int i = 0; i < 100000 && !(M3_RIS & M3_PLL_LOCKED); i++)
+        ;
+    M3_RCC = rcc & ~M3_RCC_BYPASS;
+    /* SysTick on the processor clock, its exception every 2^24 steps (0.34 s). */
+    M3_SYST_RVR = M3_SYST_MAX;
+    M3_SYST_CVR = 0;
+    M3_SYST_CSR = 7;
+    /* The count reads 0 until the first step loads it, which plat_time_ns would take for the
+     * end of a period: wait for it. */
+    while (M3_SYST_CVR == 0)
+        ;
+}
+
+static void m3_io_init(void)
+{
+    M3_RCGC1 |= 1u << 0 | 1u << 4;           /* UART0, SSI0 */
+    M3_RCGC2 |= 1u << 0 | 1u << 2 | 1u << 3; /* GPIO ports A, C, D */
+    M3_UART_CTL = 0;
+    M3_UART_IBRD = 27; /* 50 MHz / (16 x 115200) = 27 + 8/64 */
+    M3_UART_FBRD = 8;
+    M3_UART_LCRH = 3u << 5 | 1u << 4; /* 8 bits, FIFOs */
+    M3_UART_CTL = 1u << 0 | 1u << 8 | 1u << 9;
+    M3_GPIO_AFSEL(M3_GPIO_A) |= M3_SSI_PINS;
+    M3_GPIO_DEN(M3_GPIO_A) |= M3_SSI_PINS;
+    M3_GPIO_DIR(M3_GPIO_C) |= M3_OLED_DC;
+    M3_GPIO_DEN(M3_GPIO_C) |= M3_OLED_DC;
+    M3_GPIO_DATA(M3_GPIO_D, M3_SD_CS) = M3_SD_CS;
+    M3_GPIO_DIR(M3_GPIO_D) |= M3_SD_CS;
+    M3_GPIO_DEN(M3_GPIO_D) |= M3_SD_CS;
+    /* SSI: SPI frames of 8 bits, clock idle high, data on the second edge (mode 3),
+     * 50 MHz / (2 x 8) = 3.125 MHz. */
+    M3_SSI_CR1 = 0;
+    M3_SSI_CPSR = 2;
+    M3_SSI_CR0 = 7u << 8 | 1u << 7 | 1u << 6 | 7u;
+    M3_SSI_CR1 = 1u << 1;
+    m3_oled_init();
+}
+
+/* Called by start.S with .data copied, .bss clear and the stack painted. */
+void m3_main(void);
+void m3_main(void)
+{
+    static char cmdline[256];
+    static char *argv[24];
+    int argc = 0, status = 2;
+    m3_clock_init();
+    m3_io_init();
+    uint32_t args[2] = {(uint32_t)(uintptr_t)cmdline, sizeof cmdline};
+    if (m3_semi(M3_SYS_GET_CMDLINE, args) != 0) {
+        plat_log("error: the argument list does not fit in 256 bytes");
+        m3_exit(status);
+    }
+    for (char *s = cmdline; *s;) {
+        while (*s == ' ')
+            *s++ = '\0';
+        if (!*s)
+            break;
+        if (argc == (int)(sizeof argv / sizeof *argv) - 1) {
+            plat_log("error: more than 23 arguments");
+            m3_exit(status);
+        }
+        argv[argc++] = s;
+        while (*s && *s != ' ')
+            s++;
+    }
+    argv[argc] = 0;
+    status = app_main(argc, argv);
+    if (m3_report_ram() != 0 && status == 0)
+        status = 1;
+    m3_exit(status);
+}

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# qemu.sh: runs the Cortex-M3 intro image on qemu-system-arm -M lm3s6965evb: play it on the emulated OLED, render frames to files, benchmark a stretch, or show one frame.
+#
+# Usage (from the top of the repository; make qemu-m3 and make qemu-m3-frames call it):
+#   platform/m3/qemu.sh play   [SETTINGS]                  QEMU's window: the OLED, the intro looping
+#   platform/m3/qemu.sh frames [SETTINGS] N...             build/qemu-m3/fixed-NNNN.ppm (128x64 colour)
+#   platform/m3/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
+#   platform/m3/qemu.sh show   [SETTINGS] N SCREEN.ppm     frame N on the OLED, saved by QEMU's
+#                                                          screendump (512x256: 4x4 per pixel)
+# SETTINGS are render's --depth, --mode, --grid (4 or 8), --threshold, --min-contrib and --octaves.
+# frames, bench and show run headless under `-icount shift=0` (one guest instruction = 1 ns of
+# virtual time: exact, repeatable counts, 20 ns steps of the board's 50 MHz SysTick) and print
+# `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use
+# (`ram: ...`). A frame is byte for byte `build/rt-fixed render --size 128x64 --frame N`. The exit
+# status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
+usage="usage: platform/m3/qemu.sh play|frames|bench|show [SETTINGS] [ARGS...] (see the file's header)"
+
+[ $# -ge 1 ] || die "$usage"
+cmd=$1
+shift
+elf=build/m3/intro-fixed.elf
+[ -f "$elf" ] || die "$elf is missing: run make m3 first"
+command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
+timeout_s=${QEMU_TIMEOUT:-600}
+case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+
+screen=
+if [ "$cmd" = show ]; then
+  [ $# -ge 2 ] || die "show wants N SCREEN.ppm"
+  screen=${*: -1}
+  set -- "${@:1:$#-1}"
+  case "$screen" in *.ppm) ;; *) die "show: the screen file must end in .ppm, not '$screen'" ;; esac
+fi
+for a in "$@"; do
+  case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
+done
+settings=()
+args=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --depth|--mode|--grid|--threshold|--min-contrib|--octaves)
+      [ $# -ge 2 ] || die "$1 needs a value"
+      settings+=("$1" "$2")
+      shift 2 ;;
+    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves)" ;;
+    *) args+=("$1"); shift ;;
+  esac
+done
+set -- "${args[@]+"${args[@]}"}"
+semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
+common=(-M lm3s6965evb -kernel "$elf")
+
+case "$cmd" in
+  play)
+    [ $# -eq 0 ] || die "play takes no frame arguments"
+    if [ -z "${DISPLAY:-}" ] && [ -z "${WAYLAND_DISPLAY:-}" ]; then
+      die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-m3-frames renders frames to files instead"
+    fi
+    echo "qemu: playing the intro at 128x64 on the emulated OLED (16 greys); close the window or press Ctrl-C in this terminal to stop"
+    exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})"
+    ;;
+  frames)
+    [ $# -ge 1 ] || die "frames wants at least one frame number"
+    mkdir -p build/qemu-m3
+    for n in "$@"; do
+      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
+      rm -f "build/qemu-m3/fixed-$(printf '%04d' "$((10#$n))").ppm"
+    done
+    set -- --out build/qemu-m3/fixed "$@"
+    ;;
+  bench)
+    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    ;;
+  show)
+    [ $# -eq 1 ] || die "show wants one frame number and the screen file"
+    mkdir -p "$(dirname "$screen")"
+    rm -f "$screen"
+    log=$(mktemp)
+    trap 'rm -f "$log"' EXIT
+    # The guest logs `shown frame=N` once the frame is on the OLED; then the monitor saves it.
+    {
+      for _ in $(seq 600); do grep -q '^shown' "$log" 2>/dev/null && break; sleep 0.1; done
+      sleep 0.5
+      echo "screendump $screen"
+      sleep 1
+      echo quit
+    } | timeout --foreground -k 5 "$timeout_s" qemu-system-arm "${common[@]}" -display none -monitor stdio \
+        -serial "file:$log" -icount shift=0,align=off,sleep=off \
+        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >/dev/null 2>&1 || true
+    cat "$log"
+    [ -s "$screen" ] || die "no screendump was written (see the log above)"
+    exit 0
+    ;;
+  *) die "unknown command '$cmd'; $usage" ;;
+esac
+
+status=0
+# --foreground: QEMU stays in the terminal's process group; no stdin.
+timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
+  -icount shift=0,align=off,sleep=off \
+  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
+  status=$?
+if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+  echo "qemu.sh: error: the M3 guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
+  exit 1
+fi
+exit "$status"
