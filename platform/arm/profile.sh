@@ -4,7 +4,7 @@
 # Usage: platform/arm/profile.sh [fixed|float|fixed16] [SETTINGS] N...
 # Renders intro frames N... on the board (platform/arm/qemu.sh frames, under -icount) with the
 # TCG plugin build/arm/qemu_profile.so (platform/arm/qemu_profile.c) loaded: it counts every
-# guest instruction per address, inside rt_render only (from rt_render's first instruction to
+# guest instruction per address, inside the frame's rendering only (from rt_render_band_into's first instruction to
 # the board's next clock read). The addresses are mapped to source with
 # `arm-none-eabi-addr2line -f -i` and summed:
 #   - by function, inlined code counted in the function it was written in (the innermost
@@ -36,9 +36,9 @@ plugin=build/arm/qemu_profile.so
 command -v arm-none-eabi-addr2line >/dev/null || die "arm-none-eabi-addr2line is missing: run ./setup.sh --arm"
 
 sym() { arm-none-eabi-nm "$elf" | awk -v s="$1" '$3 == s { print "0x" $1; exit }'; }
-start=$(sym rt_render)
+start=$(sym rt_render_band_into)
 stop=$(sym plat_time_ns)
-if [ -z "$start" ] || [ -z "$stop" ]; then die "rt_render or plat_time_ns not found in $elf"; fi
+if [ -z "$start" ] || [ -z "$stop" ]; then die "rt_render_band_into or plat_time_ns not found in $elf"; fi
 
 out=build/qemu
 mkdir -p "$out"

@@ -4,8 +4,8 @@
  *   -plugin build/arm/qemu_profile.so,out=FILE,start=ADDR,stop=ADDR
  * Every translated guest instruction gets an inline 64-bit counter (QEMU adds 1 to it each time
  * the instruction starts, no call into the plugin). The counting window opens when the
- * instruction at `start` (the entry of rt_render) is reached and closes at the next instruction
- * at `stop` (the entry of plat_time_ns, which the board calls right after rt_render): at those
+ * instruction at `start` (the entry of rt_render_band_into) is reached and closes at the next instruction
+ * at `stop` (the entry of plat_time_ns, which the board calls right after rendering a band): at those
  * two points a callback adds the counters' change since the window opened into the window's
  * totals. At exit FILE gets one line `ADDR COUNT` (hexadecimal address, decimal count) per
  * address executed inside a window, after three summary lines:
