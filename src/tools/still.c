@@ -35,7 +35,8 @@ int main(int argc, char **argv)
                    .min_contrib = RT_DEFAULT_MIN_CONTRIB,
                    .mode = RT_MODE_ADAPTIVE,
                    .grid = RT_DEFAULT_GRID,
-                   .threshold = RT_DEFAULT_THRESHOLD};
+                   .threshold = RT_DEFAULT_THRESHOLD,
+                   .footprint = 1};
     rt_view v;
     rt_view_init(&v, &scene.camera, (int)w, (int)h);
     uint32_t *pixels = malloc((size_t)w * (size_t)h * sizeof *pixels);
