@@ -92,20 +92,19 @@ vec3 rt_noise_wrap(vec3 p)
     return v3(r_mod_pow2(p.x, period), r_mod_pow2(p.y, period), r_mod_pow2(p.z, period));
 }
 
-/* A real in [0, 32768) as a Q16.16 integer, rounded down: exact in the fixed build, and in
- * float every step (a floor, a product by 256) is exact too. */
+/* floor(w * 2^16) modulo 2^32 for |w| < 32768: w's Q16.16 integer, rounded down (exact in the
+ * fixed build; in float each step, a floor and a product by 2^15, is exact too). For lattice
+ * coordinates the caller masks it to the period: this is the wrap. */
 static uint32_t noise_q16(real w)
 {
-    int32_t i, hi, lo;
+    int32_t i, hi;
     real f = r_floor_split(w, &i);
-    f = r_floor_split(r_muli(f, 256), &hi);
-    r_floor_split(r_muli(f, 256), &lo);
-    return (uint32_t)i << NOISE_FRAC | (uint32_t)hi << 8 | (uint32_t)lo;
+    real g = r_floor_split(r_muli(f, 32768), &hi); /* f * 2^15 < 32768: no saturation */
+    return ((uint32_t)i << NOISE_FRAC) + ((uint32_t)hi << 1) + (g >= R(0.5));
 }
 
 real rt_noise(vec3 p)
 {
-    p = rt_noise_wrap(p);
     return r_from_q16(noise_eval(noise_q16(p.x) & NOISE_COORD_MASK,
                                  noise_q16(p.y) & NOISE_COORD_MASK,
                                  noise_q16(p.z) & NOISE_COORD_MASK));
@@ -118,7 +117,6 @@ real rt_noise(vec3 p)
  * octave doubles the lattice coordinates modulo the period, in integers. */
 static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
 {
-    p = rt_noise_wrap(p);
     uint32_t cx = noise_q16(p.x) & NOISE_COORD_MASK, cy = noise_q16(p.y) & NOISE_COORD_MASK,
              cz = noise_q16(p.z) & NOISE_COORD_MASK;
     int32_t sum = 0;
