@@ -30,6 +30,21 @@ for v in san-fixed san-float; do
   done
 done
 
+# The ARM926's division-free path (FX_SOFT_DIVIDE=1) on the host, under the sanitizers: the unit
+# tests, and frames through the whole intro byte for byte those of rt-fixed's hardware division.
+bad=""
+for t in test_numeric test_shapes test_subsample; do
+  "$B/san-fixed-sd/$t" >"$T/san-fixed-sd-$t.log" 2>&1 || bad="$bad $t:$(tail -3 "$T/san-fixed-sd-$t.log" | tr '\n' ' ');"
+done
+sd=$("$B/san-fixed-sd/rt" render --frames 0-1200 --step 100 --size 96x72 --checksum 2>"$T/san-fixed-sd.err")
+hw=$("$B/rt-fixed" render --frames 0-1200 --step 100 --size 96x72 --checksum 2>/dev/null)
+[ "$sd" = "$hw" ] && [ "$(grep -c fnv64= <<<"$sd")" -eq 13 ] || bad="$bad frames differ from rt-fixed: $(tail -1 "$T/san-fixed-sd.err");"
+# the division-free quotient is called there, and nowhere in san-fixed
+calls=$(objdump -d "$B/san-fixed-sd/rt" | grep -c 'call.*<fx_udiv64>')
+[ "$calls" -gt 0 ] && ! objdump -d "$B/san-fixed/rt" | grep -q 'call.*<fx_udiv64>' || bad="$bad fx_udiv64 called $calls times;"
+[ -z "$bad" ] && pass "san-fixed-sd (-DFX_SOFT_DIVIDE=1, the ARM926's division path): test_numeric, test_shapes, test_subsample pass; 13 intro frames = rt-fixed's; fx_udiv64 called from $calls places (none in san-fixed)" ||
+  fail "san-fixed-sd:$bad"
+
 # The fixed-point format itself: U_ONE and friends follow FX_UNIT_FRAC (30 in rt-fixed, 16 in
 # rt-fixed16), and each format's unit-vector operations stay within a few of its own steps.
 for vf in san-fixed:30 san-fixed16:16; do
@@ -325,6 +340,17 @@ for args in "--size=64X48 --threads=2 --frames=3" "--size 64x48 --threads 1 --fr
 done
 [ -z "$bad" ] && [ ! -e "$W/ok.png" ] && pass "the players accept the same command lines (rt-fixed/rt-float play, intro-fixed/intro-float, each option taken before --help)" ||
   fail "players' command lines:$bad"
+# The tools never open a window: they link the null display (platform/null.c), not SDL2; the
+# programs that play do (the positive control).
+bad=""
+for p in rt-cmp rt-scenec rt-edges; do
+  readelf -d "$B/$p" | grep -q 'NEEDED.*libSDL2' && bad="$bad $p links SDL2;"
+done
+for p in rt-fixed rt-float intro-fixed; do
+  readelf -d "$B/$p" | grep -q 'NEEDED.*libSDL2' || bad="$bad $p does not link SDL2;"
+done
+[ -z "$bad" ] && pass "rt-cmp, rt-scenec, rt-edges link no SDL2 (null display); rt-fixed, rt-float, intro-fixed do" ||
+  fail "SDL2 links:$bad"
 # A write that fails once rendering is done (here: a file size limit) gets exit status 1 and
 # leaves neither the file nor its temporary file behind, in single- and multi-frame renders.
 for args in "-o $W/limit.ppm" "--frames 0-2 -o $W/limit-%d.ppm"; do
