@@ -321,6 +321,14 @@ while IFS= read -r line; do
   fi
 done <tests/bad_cli.txt
 pass "bad command lines: the $ncli cases of tests/bad_cli.txt, each one line and exit 2 (render cases from both builds and both sanitized builds; player cases word for word alike from rt-* play and the intro players), no file left behind"
+# --progress without a terminal (a log, CI): plain lines, one every 5 percent, no carriage returns.
+$B/rt-fixed render --frames 0-199 --size 8x6 --progress --checksum >/dev/null 2>"$T/progress.err"
+lines=$(grep -c 'rt-fixed: frame .*%), .* frames/s' "$T/progress.err")
+if ! grep -q $'\r' "$T/progress.err" && [ "$lines" -eq 21 ] && grep -q '(200 of 200, 100%)' "$T/progress.err"; then
+  pass "--progress into a file: $lines plain lines for 200 frames (the first, then every 5%), no carriage return"
+else
+  fail "--progress into a file: $lines progress lines for 200 frames (want 21, no \\r): $(head -c 300 "$T/progress.err" | tr '\r\n' '|/')"
+fi
 # One grammar: `--opt=value` is `--opt value` (here with a size written WXH), and the players
 # accept the same command lines: each option is taken before --help ends the run.
 eq=$($B/rt-fixed render --size=40X30 --time=2 --checksum 2>&1)
@@ -340,6 +348,22 @@ for args in "--size=64X48 --threads=2 --frames=3" "--size 64x48 --threads 1 --fr
 done
 [ -z "$bad" ] && [ ! -e "$W/ok.png" ] && pass "the players accept the same command lines (rt-fixed/rt-float play, intro-fixed/intro-float, each option taken before --help)" ||
   fail "players' command lines:$bad"
+# help and --version: `help`, `--help` and `render --help` print the same usage, generated from
+# the option table (every option of render and play in it, no stray line); --version names the
+# program, fixray's version and the number system.
+h1=$($B/rt-fixed help) h2=$($B/rt-fixed --help) h3=$($B/rt-fixed render --help) h4=$($B/rt-fixed play -h)
+v1=$($B/rt-fixed --version) v2=$($B/intro-float --version) v3=$($B/rt-edges --version)
+bad=""
+[ "$h1" = "$h2" ] && [ "$h2" = "$h3" ] && [ "$h3" = "$h4" ] || bad="$bad the four usages differ;"
+for o in --scene -o --size --time --frame --frames --step --checksum --progress --depth --mode --grid \
+         --threshold --min-contrib --octaves --effects --show-samples --threads --stats --screenshot; do
+  grep -q -- "^  $o \|^  $o, \|, $o \| $o,\| $o as" <<<"$h1" || bad="$bad $o missing;"
+done
+grep -qx ' *rt-fixed --help' <<<"$h1" && bad="$bad stray 'rt-fixed --help' line;"
+[[ $v1 =~ ^rt-fixed\ \(fixray\)\ [0-9.]+,\ fixed$ ]] && [[ $v2 =~ ^intro-float\ \(fixray\)\ [0-9.]+,\ float$ ]] &&
+  [[ $v3 =~ ^rt-edges\ \(fixray\) ]] || bad="$bad versions: $v1 / $v2 / $v3;"
+[ -z "$bad" ] && pass "help = --help = render --help = play -h ($(wc -l <<<"$h1") lines, every option); $v1; $v2" ||
+  fail "help and --version:$bad"
 # The tools never open a window: they link the null display (platform/null.c), not SDL2; the
 # programs that play do (the positive control).
 bad=""
@@ -448,6 +472,25 @@ while read -r line; do
     *) fail "${line#FAIL }" ;;
   esac
 done < <(tests/hard_scenes.sh 2>&1)
+
+# ---- each texture its own reach (docs/scene-format.md): a checker plane takes scale 1 and up
+# to 1.5625 (points 20480 units out, x 1.5625 = 32000), rendered towards the far edge of the
+# scene with no numeric event, fixed against float; noise textures keep their 20000 (bad_scenes).
+bad=""
+for scale in 1 1.5625; do
+  printf '%s\n' "camera eye 0 1 -4000 at 0 0.95 -4096" "light sun pos 0 4000 0 color 1 1 1" \
+    "material checks texture checker scale $scale color2 0.2 0.2 0.2" \
+    "plane floor material checks normal 0 1 0 offset 0" >"$T/checker-$scale.scene"
+  for v in san-fixed san-float; do
+    st=$($B/$v/rt render --scene "$T/checker-$scale.scene" --size 64x48 --stats -o "$T/checker-$scale-$v.png" 2>&1) ||
+      bad="$bad $v scale $scale: $st;"
+    grep -q '^fx_overflow=0$' <<<"$st" && grep -q '^fx_domain=0$' <<<"$st" || bad="$bad $v scale $scale: numeric events;"
+  done
+  line=$($B/rt-cmp "$T/checker-$scale-san-fixed.png" "$T/checker-$scale-san-float.png" 2>&1)
+  awk -v p="$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")" 'BEGIN { exit !(p == "inf" || p >= 40) }' || bad="$bad scale $scale: $line;"
+done
+[ -z "$bad" ] && pass "checker plane at scale 1 and 1.5625 out to the scene's edge: no numeric event, fixed vs float $line" ||
+  fail "checker plane scales:$bad"
 
 # ---- bad scene files: the table in tests/bad_scenes.txt --------------------------------------
 # Each case: exit 2, one line "FILE:LINE:COL: words", and the same message from both builds.
