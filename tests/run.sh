@@ -17,6 +17,33 @@ DEMO="--scene scenes/demo.scene"
 pass() { passed=$((passed + 1)); echo "ok   $*"; }
 fail() { failed=$((failed + 1)); echo "FAIL $*"; }
 
+# ---- who may include whom (docs/architecture.md) ------------------------------------------------
+# The numeric layer and the tracer core include only each other; the scene language adds the
+# core, never the programs or the platform. Each #include "X" must be a file of the allowed
+# folders (a positive control checks that the rule sees an include of the programs).
+layer_bad() { # allowed-folders files...: prints the includes outside the allowed folders
+  local allowed=$1 f inc d ok
+  shift
+  for f in "$@"; do
+    while read -r inc; do
+      ok=""
+      for d in $allowed; do [ -e "$d/$inc" ] && ok=1; done
+      [ -n "$ok" ] || echo -n "$f includes $inc; "
+    done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f")
+  done
+}
+bad="$(layer_bad "fixed src/core" fixed/*.[ch] src/core/*.[ch])$(layer_bad "fixed src/core src/scene" src/scene/*.[ch])"
+# and of the system's headers the core takes only these: no I/O, allocation, clock or threads
+sys=$(sed -n 's/^#include <\([^>]*\)>.*/\1/p' fixed/*.[ch] src/core/*.[ch] | sort -u | grep -vxE 'stdint.h|stddef.h|string.h|math.h|fix16.h')
+[ -n "$sys" ] && bad="$bad fixed/ or src/core/ include <$(tr '\n' ' ' <<<"$sys")>;"
+printf '#include "rt.h"\n#include "cli.h"\n' >"$T/layer.c"
+ctl=$(layer_bad "fixed src/core" "$T/layer.c")
+if [ -z "$bad" ] && [[ $ctl == *"includes cli.h"* ]]; then
+  pass "layers: fixed/ and src/core/ include only each other and stdint, stddef, string, math, fix16; src/scene/ adds only them ($(ls fixed/*.[ch] src/core/*.[ch] src/scene/*.[ch] | wc -l) files)"
+else
+  fail "layers: $bad (control: $ctl)"
+fi
+
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
   for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do

@@ -1,4 +1,4 @@
-/* knobs.c: parses the render settings of a command line into rt_params with integers only (rt-float, rt-fixed and the ARM intro alike). */
+/* knobs.c: the render settings of a command line as rt_params, and the number syntax of command lines and scene files, with integers only and no libc (rt-float, rt-fixed, rt-edges and the boards alike). */
 #include <stddef.h>
 
 #include "knobs.h"

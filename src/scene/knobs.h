@@ -1,4 +1,4 @@
-/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
+/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves) and their defaults, and the one number syntax of command lines and scene files; integers only, shared by the desktop programs and the boards. */
 #ifndef FIXRAY_KNOBS_H
 #define FIXRAY_KNOBS_H
 
