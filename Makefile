@@ -3,7 +3,7 @@
 #   make            build/rt-float, build/rt-fixed, build/rt-fixed16, build/rt-cmp, build/rt-edges,
 #                   the intro players
 #   make run        set up if needed, play the intro in a window (without a display: render it
-#                   headless into build/out/intro/ with progress (not on a terminal: a line every 5%), fps, fixed vs float stills)
+#                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core) and the ARM926
