@@ -97,8 +97,6 @@ static int knobs_find(const char *opt)
     return knobs_eq(opt, "--mode") ? KNOBS_NOPTS : -1;
 }
 
-int knobs_is_option(const char *opt) { return knobs_find(opt) >= 0; }
-
 int knobs_index(const char *opt) { return knobs_find(opt); }
 
 int knobs_parse(knobs *k, const char *opt, const char *val, const char **expected)

@@ -29,9 +29,6 @@ typedef struct knobs {
         .octaves = 0 \
     }
 
-/* 1 when `opt` is one of the settings' options (each takes a value), else 0. */
-int knobs_is_option(const char *opt);
-
 /* Which setting `opt` names: 0 .. KNOBS_COUNT - 1 (one bit each for "given twice"), or -1. */
 #define KNOBS_COUNT 6
 int knobs_index(const char *opt);
