@@ -29,14 +29,14 @@ CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp
 CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
 [ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
 INC="-Ifixed -Isrc/core -Isrc/scene -Isrc/app -isystem $B/deps/libfixmath/libfixmath"
-CORE="fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c src/core/render.c src/core/subsample.c src/core/noise.c src/core/texture.c src/scene/scn.c"
+CORE="fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c src/core/render.c src/core/subsample.c src/core/noise.c src/core/texture.c src/scene/scn.c src/scene/knobs.c"
 LIB=$B/obj/fixed/libfixmath.a
 
 # Builds program $1 from generated scene source $2 and effects header $3.
 build() {
   local objs=() f o
   mkdir -p "$1.obj"
-  for f in $CORE src/scene/knobs.c; do # knobs.c: still.c renders with render's defaults
+  for f in $CORE; do
     o="$1.obj/$(basename "${f%.c}").o"
     $CC $CFLAGS $INC -include "$3" -c "$f" -o "$o" || return 1
     objs+=("$o")
@@ -62,7 +62,7 @@ build_arm() {
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/app/intro.o" "$AO/src/scene/knobs.o" "$AO/platform/arm/arm.o" \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/app/intro.o" "$AO/platform/arm/arm.o" \
     "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
 }
 arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }
