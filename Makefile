@@ -3,7 +3,7 @@
 #   make            build/rt-float, build/rt-fixed, build/rt-fixed16, build/rt-cmp, build/rt-edges,
 #                   the intro players
 #   make run        set up if needed, play the intro in a window (without a display: render it
-#                   headless into build/out/intro/ with a progress bar, fps, fixed vs float stills)
+#                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
@@ -38,6 +38,7 @@
 #                         cheaper, less precise variant (docs/numerics.md)
 #   san-float, san-fixed, san-fixed16  -O1 with AddressSanitizer + UBSan and numeric event
 #                         counting: tests
+#   san-fixed-sd          san-fixed with the ARM926's division-free path (-DFX_SOFT_DIVIDE=1)
 #   fuzz-float, fuzz-fixed  clang -O1, libFuzzer + ASan + UBSan + numeric event counting
 
 BUILD := build
@@ -85,6 +86,9 @@ FIXED_TESTS := test_format
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS) $(FIXED_TESTS))
 # The cheaper fixed-point variant: unit in Q16.16 instead of Q2.30.
 FIXED16_DEFS := -DFX_UNIT_FRAC=16
+# The ARM926's division-free path (FX_SOFT_DIVIDE, fixed/real_fixed.h) on the host: san-fixed-sd.
+SOFT_DIVIDE_DEFS := -DFX_SOFT_DIVIDE=1
+SOFT_DIVIDE_TESTS := test_numeric test_shapes test_subsample
 
 # On x86-64 the fixed core is compiled without access to floating-point registers: any float
 # or double that creeps into it stops the build.
@@ -95,7 +99,8 @@ endif
 HOST_PROGS := $(BUILD)/rt-float $(BUILD)/rt-fixed $(BUILD)/rt-fixed16 $(BUILD)/rt-cmp $(BUILD)/rt-scenec \
               $(BUILD)/rt-edges
 SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUILD)/$(v)/,$(TESTS))) \
-             $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS)))
+             $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
+             $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
         setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
@@ -146,6 +151,7 @@ $(eval $(call variant,fixed16,1,$(OPT) $(FIXED16_DEFS),$(FIXED_CORE_GUARD),0))
 $(eval $(call variant,san-float,0,$(SAN),,1))
 $(eval $(call variant,san-fixed,1,$(SAN),,1))
 $(eval $(call variant,san-fixed16,1,$(SAN) $(FIXED16_DEFS),,1))
+$(eval $(call variant,san-fixed-sd,1,$(SAN) $(SOFT_DIVIDE_DEFS),,1))
 $(eval $(call variant,fuzz-float,0,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 $(eval $(call variant,fuzz-fixed,1,$(FUZZ_CFLAGS),,1,$(FUZZ_CC)))
 
@@ -195,6 +201,7 @@ endef
 $(eval $(call san_progs,san-float))
 $(eval $(call san_progs,san-fixed))
 $(eval $(call san_progs,san-fixed16))
+$(eval $(call san_progs,san-fixed-sd))
 
 # The randomised property test at -O2, for long runs (make stress).
 $(BUILD)/stress-float: $(BUILD)/obj/float/tests/test_stability.o $(CORE_OBJS_float)
@@ -363,7 +370,7 @@ setup-gui:
 	@./setup.sh --arm --gui
 
 # Plays the intro in a window; without a display, renders it headless into build/out/intro/
-# with a progress bar and prints frames per second (src/tools/run-intro.sh). REAL=fixed|float.
+# with progress lines and prints frames per second (src/tools/run-intro.sh). REAL=fixed|float.
 RUN_REAL ?= float
 run: setup
 	@$(MAKE) -s --no-print-directory all
@@ -441,7 +448,7 @@ qemu-profile: setup-arm
 	@platform/arm/profile.sh $(REAL) $(SETTINGS) $(if $(filter command line environment,$(origin FRAMES)),$(FRAMES),425 875)
 
 clean:
-	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
+	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/san-fixed-sd $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
 	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/m3 $(BUILD)/qemu-m3 $(BUILD)/stress-fixed \
 	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
 	       $(PLAYERS)

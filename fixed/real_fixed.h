@@ -37,11 +37,14 @@
 
 /* 1 on processors without a divide instruction (the ARM926): there the divisions of the
  * per-ray path go through exact division-free equivalents (a libgcc 64-bit division costs
- * hundreds of instructions). Elsewhere the hardware divides. Results are the same either way. */
+ * hundreds of instructions). Elsewhere the hardware divides. Results are the same either way;
+ * -DFX_SOFT_DIVIDE=1 runs the board's path on the host (the san-fixed-sd tests). */
+#ifndef FX_SOFT_DIVIDE
 #if defined(__arm__) && !defined(__ARM_FEATURE_IDIV)
 #define FX_SOFT_DIVIDE 1
 #else
 #define FX_SOFT_DIVIDE 0
+#endif
 #endif
 
 /* n / m rounded down, for n < 2^62 and m >= 1, without a divide instruction when the quotient

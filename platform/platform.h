@@ -3,10 +3,11 @@
  * A backend owns main() and the frame memory; it calls into the program (app_main) and gets
  * frames back through plat_frame_present. Pixels are 0x00RRGGBB, `stride` pixels per row.
  * Backends: the desktop, platform/headless.c (image files, clock, main) with threads.c (worker
- * threads) and sdl.c (a window through SDL2); platform/arm/ (bare-metal ARM926 on QEMU's
- * versatilepb board: PL110 framebuffer, UART, semihosting files); platform/m3/ (bare-metal
- * Cortex-M3 on QEMU's lm3s6965evb: a 128x64 grey OLED that keeps its own pixels, so frames reach
- * it band by band and no frame is ever in RAM).
+ * threads) and a display: sdl.c (a window through SDL2: rt-float, rt-fixed, the intro players)
+ * or null.c (none: the tools, which never open a window and link no SDL2); platform/arm/
+ * (bare-metal ARM926 on QEMU's versatilepb board: PL110 framebuffer, UART, semihosting files);
+ * platform/m3/ (bare-metal Cortex-M3 on QEMU's lm3s6965evb: a 128x64 grey OLED that keeps its
+ * own pixels, so frames reach it band by band and no frame is ever in RAM).
  */
 #ifndef FIXRAY_PLATFORM_H
 #define FIXRAY_PLATFORM_H
@@ -81,7 +82,7 @@ int plat_cpu_count(void);
  * worker 0) and returns when all have returned. The pool starts on first use and is kept. */
 void plat_parallel(int threads, void (*job)(void *ctx, int worker), void *ctx);
 
-/* ---- desktop only: a window and keys (platform/sdl.c) --------------------------------------- */
+/* ---- desktop only: a window and keys (platform/sdl.c; platform/null.c has none) ------------- */
 
 /* What the player's keys ask for. */
 enum plat_key {

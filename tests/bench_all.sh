@@ -62,6 +62,10 @@ took=$(($(date +%s) - start))
 q_n=$(grep -c '^frame=' build/bench/qemu-fixed.log)
 d_n=$(seq 0 "$step" 48 | wc -l)
 
+# What follows the marker in the file (the other measurements, docs/bench.md) is kept.
+MARK='<!-- make bench writes everything above this line and keeps what follows -->'
+kept=""
+[ -f "$out" ] && grep -qxF "$MARK" "$out" && kept=$(sed "1,/^<!-- make bench writes everything above this line/d" "$out")
 {
   echo "# Frames per second per platform: the intro"
   echo
@@ -111,6 +115,11 @@ d_n=$(seq 0 "$step" 48 | wc -l)
   echo "The desktop times depend on what else the machine is doing: the gain from a second thread"
   echo "shrinks to nothing when the other core is busy (see the load average above). The QEMU"
   echo "instruction counts do not depend on the machine."
+  if [ -n "$kept" ]; then
+    echo
+    echo "$MARK"
+    printf '%s\n' "$kept"
+  fi
 } >"$out"
 echo "bench: wrote $out in $took s" >&2
 cat "$out"

@@ -17,6 +17,33 @@ DEMO="--scene scenes/demo.scene"
 pass() { passed=$((passed + 1)); echo "ok   $*"; }
 fail() { failed=$((failed + 1)); echo "FAIL $*"; }
 
+# ---- who may include whom (docs/architecture.md) ------------------------------------------------
+# The numeric layer and the tracer core include only each other; the scene language adds the
+# core, never the programs or the platform. Each #include "X" must be a file of the allowed
+# folders (a positive control checks that the rule sees an include of the programs).
+layer_bad() { # allowed-folders files...: prints the includes outside the allowed folders
+  local allowed=$1 f inc d ok
+  shift
+  for f in "$@"; do
+    while read -r inc; do
+      ok=""
+      for d in $allowed; do [ -e "$d/$inc" ] && ok=1; done
+      [ -n "$ok" ] || echo -n "$f includes $inc; "
+    done < <(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f")
+  done
+}
+bad="$(layer_bad "fixed src/core" fixed/*.[ch] src/core/*.[ch])$(layer_bad "fixed src/core src/scene" src/scene/*.[ch])"
+# and of the system's headers the core takes only these: no I/O, allocation, clock or threads
+sys=$(sed -n 's/^#include <\([^>]*\)>.*/\1/p' fixed/*.[ch] src/core/*.[ch] | sort -u | grep -vxE 'stdint.h|stddef.h|string.h|math.h|fix16.h')
+[ -n "$sys" ] && bad="$bad fixed/ or src/core/ include <$(tr '\n' ' ' <<<"$sys")>;"
+printf '#include "rt.h"\n#include "cli.h"\n' >"$T/layer.c"
+ctl=$(layer_bad "fixed src/core" "$T/layer.c")
+if [ -z "$bad" ] && [[ $ctl == *"includes cli.h"* ]]; then
+  pass "layers: fixed/ and src/core/ include only each other and stdint, stddef, string, math, fix16; src/scene/ adds only them ($(ls fixed/*.[ch] src/core/*.[ch] src/scene/*.[ch] | wc -l) files)"
+else
+  fail "layers: $bad (control: $ctl)"
+fi
+
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
   for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
@@ -29,6 +56,21 @@ for v in san-fixed san-float; do
     fi
   done
 done
+
+# The ARM926's division-free path (FX_SOFT_DIVIDE=1) on the host, under the sanitizers: the unit
+# tests, and frames through the whole intro byte for byte those of rt-fixed's hardware division.
+bad=""
+for t in test_numeric test_shapes test_subsample; do
+  "$B/san-fixed-sd/$t" >"$T/san-fixed-sd-$t.log" 2>&1 || bad="$bad $t:$(tail -3 "$T/san-fixed-sd-$t.log" | tr '\n' ' ');"
+done
+sd=$("$B/san-fixed-sd/rt" render --frames 0-1200 --step 100 --size 96x72 --checksum 2>"$T/san-fixed-sd.err")
+hw=$("$B/rt-fixed" render --frames 0-1200 --step 100 --size 96x72 --checksum 2>/dev/null)
+[ "$sd" = "$hw" ] && [ "$(grep -c fnv64= <<<"$sd")" -eq 13 ] || bad="$bad frames differ from rt-fixed: $(tail -1 "$T/san-fixed-sd.err");"
+# the division-free quotient is called there, and nowhere in san-fixed
+calls=$(objdump -d "$B/san-fixed-sd/rt" | grep -c 'call.*<fx_udiv64>')
+[ "$calls" -gt 0 ] && ! objdump -d "$B/san-fixed/rt" | grep -q 'call.*<fx_udiv64>' || bad="$bad fx_udiv64 called $calls times;"
+[ -z "$bad" ] && pass "san-fixed-sd (-DFX_SOFT_DIVIDE=1, the ARM926's division path): test_numeric, test_shapes, test_subsample pass; 13 intro frames = rt-fixed's; fx_udiv64 called from $calls places (none in san-fixed)" ||
+  fail "san-fixed-sd:$bad"
 
 # The fixed-point format itself: U_ONE and friends follow FX_UNIT_FRAC (30 in rt-fixed, 16 in
 # rt-fixed16), and each format's unit-vector operations stay within a few of its own steps.
@@ -351,6 +393,14 @@ while IFS= read -r line; do
   fi
 done <tests/bad_cli.txt
 pass "bad command lines: the $ncli cases of tests/bad_cli.txt, each one line and exit 2 (render cases from both builds and both sanitized builds; player cases word for word alike from rt-* play and the intro players), no file left behind"
+# --progress without a terminal (a log, CI): plain lines, one every 5 percent, no carriage returns.
+$B/rt-fixed render --frames 0-199 --size 8x6 --progress --checksum >/dev/null 2>"$T/progress.err"
+lines=$(grep -c 'rt-fixed: frame .*%), .* frames/s' "$T/progress.err")
+if ! grep -q $'\r' "$T/progress.err" && [ "$lines" -eq 21 ] && grep -q '(200 of 200, 100%)' "$T/progress.err"; then
+  pass "--progress into a file: $lines plain lines for 200 frames (the first, then every 5%), no carriage return"
+else
+  fail "--progress into a file: $lines progress lines for 200 frames (want 21, no \\r): $(head -c 300 "$T/progress.err" | tr '\r\n' '|/')"
+fi
 # One grammar: `--opt=value` is `--opt value` (here with a size written WXH), and the players
 # accept the same command lines: each option is taken before --help ends the run.
 eq=$($B/rt-fixed render --size=40X30 --time=2 --checksum 2>&1)
@@ -370,6 +420,33 @@ for args in "--size=64X48 --threads=2 --frames=3" "--size 64x48 --threads 1 --fr
 done
 [ -z "$bad" ] && [ ! -e "$W/ok.png" ] && pass "the players accept the same command lines (rt-fixed/rt-float play, intro-fixed/intro-float, each option taken before --help)" ||
   fail "players' command lines:$bad"
+# help and --version: `help`, `--help` and `render --help` print the same usage, generated from
+# the option table (every option of render and play in it, no stray line); --version names the
+# program, fixray's version and the number system.
+h1=$($B/rt-fixed help) h2=$($B/rt-fixed --help) h3=$($B/rt-fixed render --help) h4=$($B/rt-fixed play -h)
+v1=$($B/rt-fixed --version) v2=$($B/intro-float --version) v3=$($B/rt-edges --version)
+bad=""
+[ "$h1" = "$h2" ] && [ "$h2" = "$h3" ] && [ "$h3" = "$h4" ] || bad="$bad the four usages differ;"
+for o in --scene -o --size --time --frame --frames --step --checksum --progress --depth --mode --grid \
+         --threshold --min-contrib --octaves --effects --show-samples --threads --stats --screenshot; do
+  grep -q -- "^  $o \|^  $o, \|, $o \| $o,\| $o as" <<<"$h1" || bad="$bad $o missing;"
+done
+grep -qx ' *rt-fixed --help' <<<"$h1" && bad="$bad stray 'rt-fixed --help' line;"
+[[ $v1 =~ ^rt-fixed\ \(fixray\)\ [0-9.]+,\ fixed$ ]] && [[ $v2 =~ ^intro-float\ \(fixray\)\ [0-9.]+,\ float$ ]] &&
+  [[ $v3 =~ ^rt-edges\ \(fixray\) ]] || bad="$bad versions: $v1 / $v2 / $v3;"
+[ -z "$bad" ] && pass "help = --help = render --help = play -h ($(wc -l <<<"$h1") lines, every option); $v1; $v2" ||
+  fail "help and --version:$bad"
+# The tools never open a window: they link the null display (platform/null.c), not SDL2; the
+# programs that play do (the positive control).
+bad=""
+for p in rt-cmp rt-scenec rt-edges; do
+  readelf -d "$B/$p" | grep -q 'NEEDED.*libSDL2' && bad="$bad $p links SDL2;"
+done
+for p in rt-fixed rt-float intro-fixed; do
+  readelf -d "$B/$p" | grep -q 'NEEDED.*libSDL2' || bad="$bad $p does not link SDL2;"
+done
+[ -z "$bad" ] && pass "rt-cmp, rt-scenec, rt-edges link no SDL2 (null display); rt-fixed, rt-float, intro-fixed do" ||
+  fail "SDL2 links:$bad"
 # A write that fails once rendering is done (here: a file size limit) gets exit status 1 and
 # leaves neither the file nor its temporary file behind, in single- and multi-frame renders.
 for args in "-o $W/limit.ppm" "--frames 0-2 -o $W/limit-%d.ppm"; do
@@ -467,6 +544,25 @@ while read -r line; do
     *) fail "${line#FAIL }" ;;
   esac
 done < <(tests/hard_scenes.sh 2>&1)
+
+# ---- each texture its own reach (docs/scene-format.md): a checker plane takes scale 1 and up
+# to 1.5625 (points 20480 units out, x 1.5625 = 32000), rendered towards the far edge of the
+# scene with no numeric event, fixed against float; noise textures keep their 20000 (bad_scenes).
+bad=""
+for scale in 1 1.5625; do
+  printf '%s\n' "camera eye 0 1 -4000 at 0 0.95 -4096" "light sun pos 0 4000 0 color 1 1 1" \
+    "material checks texture checker scale $scale color2 0.2 0.2 0.2" \
+    "plane floor material checks normal 0 1 0 offset 0" >"$T/checker-$scale.scene"
+  for v in san-fixed san-float; do
+    st=$($B/$v/rt render --scene "$T/checker-$scale.scene" --size 64x48 --stats -o "$T/checker-$scale-$v.png" 2>&1) ||
+      bad="$bad $v scale $scale: $st;"
+    grep -q '^fx_overflow=0$' <<<"$st" && grep -q '^fx_domain=0$' <<<"$st" || bad="$bad $v scale $scale: numeric events;"
+  done
+  line=$($B/rt-cmp "$T/checker-$scale-san-fixed.png" "$T/checker-$scale-san-float.png" 2>&1)
+  awk -v p="$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")" 'BEGIN { exit !(p == "inf" || p >= 40) }' || bad="$bad scale $scale: $line;"
+done
+[ -z "$bad" ] && pass "checker plane at scale 1 and 1.5625 out to the scene's edge: no numeric event, fixed vs float $line" ||
+  fail "checker plane scales:$bad"
 
 # ---- bad scene files: the table in tests/bad_scenes.txt --------------------------------------
 # Each case: exit 2, one line "FILE:LINE:COL: words", and the same message from both builds.

@@ -21,6 +21,8 @@ extern const scn_desc scn_intro;
 
 #define APP_REAL REAL_NAME
 
+#define APP_PROGRESS_STEP 5 /* percent between progress lines when not on a terminal */
+
 /* The platform's clock in microseconds. */
 static uint64_t app_us(void) { return plat_time_ns() / 1000u; }
 
@@ -282,7 +284,10 @@ static int app_render(int argc, char **argv)
         return 1;
     }
 
-    int progress = o.progress || (o.have_frames && isatty(2));
+    /* On a terminal one line redrawn per frame; elsewhere (a log, CI) a plain line every
+     * APP_PROGRESS_STEP percent. */
+    int tty = isatty(2), progress = o.progress || (o.have_frames && tty);
+    long shown_pct = -1;
     frame_sums sums = {0};
     rt_view view;
     uint64_t us = 0, start = app_us();
@@ -318,11 +323,15 @@ static int app_render(int argc, char **argv)
             unsigned long long fps10 = (unsigned long long)(i + 1) * 10000000u / el;
             unsigned long long left =
                 el * (unsigned long long)(nframes - i - 1) / (i + 1) / 1000000u;
-            fprintf(stderr,
-                    "\r%s: frame %ld (%ld of %ld, %ld%%), %llu.%llu frames/s, %llu s left  ",
-                    plat_program(), f >= 0 ? f : 0, i + 1, nframes, (i + 1) * 100 / nframes,
-                    fps10 / 10, fps10 % 10, left);
-            if (i + 1 == nframes || rc != 0)
+            long pct = (i + 1) * 100 / nframes;
+            if (tty || i + 1 == nframes || rc != 0 || pct / APP_PROGRESS_STEP != shown_pct) {
+                fprintf(stderr,
+                        "%s%s: frame %ld (%ld of %ld, %ld%%), %llu.%llu frames/s, %llu s left%s",
+                        tty ? "\r" : "", plat_program(), f >= 0 ? f : 0, i + 1, nframes, pct,
+                        fps10 / 10, fps10 % 10, left, tty ? "  " : "\n");
+                shown_pct = pct / APP_PROGRESS_STEP;
+            }
+            if (tty && (i + 1 == nframes || rc != 0))
                 fputc('\n', stderr);
         }
     }

@@ -1,4 +1,4 @@
-/* knobs.c: parses the render settings of a command line into rt_params with integers only (rt-float, rt-fixed and the ARM intro alike). */
+/* knobs.c: the render settings of a command line as rt_params, and the number syntax of command lines and scene files, with integers only and no libc (rt-float, rt-fixed, rt-edges and the boards alike). */
 #include <stddef.h>
 
 #include "knobs.h"
@@ -99,8 +99,6 @@ static int knobs_find(const char *opt)
         return KNOBS_NOPTS + 1;
     return knobs_eq(opt, "--mode") ? KNOBS_NOPTS : -1;
 }
-
-int knobs_is_option(const char *opt) { return knobs_find(opt) >= 0; }
 
 int knobs_index(const char *opt) { return knobs_find(opt); }
 

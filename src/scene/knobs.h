@@ -1,4 +1,4 @@
-/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves, footprint), parsed without floating point; shared by rt-float/rt-fixed and the ARM intro. */
+/* knobs.h: the render settings a command line can change (depth, mode, grid, threshold, min-contrib, octaves, footprint) and their defaults, and the one number syntax of command lines and scene files; integers only, shared by the desktop programs and the boards. */
 #ifndef FIXRAY_KNOBS_H
 #define FIXRAY_KNOBS_H
 
@@ -29,9 +29,6 @@ typedef struct knobs {
         .threshold = KNOBS_DEFAULT_THRESHOLD, .min_contrib = KNOBS_DEFAULT_MIN_CONTRIB, \
         .octaves = 0, .footprint = 1 \
     }
-
-/* 1 when `opt` is one of the settings' options (each takes a value), else 0. */
-int knobs_is_option(const char *opt);
 
 /* Which setting `opt` names: 0 .. KNOBS_COUNT - 1 (one bit each for "given twice"), or -1. */
 #define KNOBS_COUNT 7

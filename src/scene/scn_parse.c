@@ -11,8 +11,10 @@
 #include "noise.h"
 
 /* Where texture coordinates may reach before Q16.16 runs out: |point| x scale must stay below
- * this (the wood texture takes a hypotenuse of two such coordinates: 20000 * sqrt 2 < 32767). */
+ * this. The noise textures need headroom (the wood texture takes a hypotenuse of two such
+ * coordinates: 20000 * sqrt 2 < 32767); the checker only adds 0.5 and rounds down. */
 #define PS_TEXTURE_REACH 20000
+#define PS_CHECKER_REACH 32000
 /* How far from the origin a plane's visible points can lie: the camera inside the scene cube
  * plus the longest ray (R_SCENE_MAX + R_T_MAX). */
 #define PS_PLANE_REACH (4096 + 16384)
@@ -709,16 +711,18 @@ static int ps_finish(ps_state *ps)
                      ps_max_abs(d, SCN_P_RADIUS, i, &o->radius, 1) + SCN_ONE - 1) /
                 SCN_ONE;
         int64_t scale = ps_max_abs(d, SCN_P_SCALE, o->material, &m->scale, 1);
-        if (scale * reach > (int64_t)PS_TEXTURE_REACH * SCN_ONE) {
+        int limit = m->texture == RT_TEX_CHECKER ? PS_CHECKER_REACH : PS_TEXTURE_REACH;
+        if (scale * reach > (int64_t)limit * SCN_ONE) {
             char s[16];
             scn_format_q16((int32_t)scale, s);
             return ps_fail_at(ps, ps->object_line[i], 1,
                               "%s '%s': texture scale %s of material "
                               "'%s' takes its points %lld units out, beyond the %d that Q16.16 "
-                              "textures allow",
+                              "%s textures allow",
                               o->kind == RT_SPHERE ? "sphere" : "plane", ps->f->object_names[i], s,
                               ps->f->material_names[o->material],
-                              (long long)(scale * reach / SCN_ONE), PS_TEXTURE_REACH);
+                              (long long)(scale * reach / SCN_ONE), limit,
+                              m->texture == RT_TEX_CHECKER ? "checker" : "noise");
         }
     }
     d->tracks = ps->f->tracks;
