@@ -34,12 +34,12 @@ layer_bad() { # allowed-folders files...: prints the includes outside the allowe
 }
 bad="$(layer_bad "fixed src/core" fixed/*.[ch] src/core/*.[ch])$(layer_bad "fixed src/core src/scene" src/scene/*.[ch])"
 # and of the system's headers the core takes only these: no I/O, allocation, clock or threads
-sys=$(sed -n 's/^#include <\([^>]*\)>.*/\1/p' fixed/*.[ch] src/core/*.[ch] | sort -u | grep -vxE 'stdint.h|stddef.h|string.h|math.h|fix16.h')
+sys=$(sed -n 's/^#include <\([^>]*\)>.*/\1/p' fixed/*.[ch] src/core/*.[ch] | sort -u | grep -vxE 'stdint.h|stddef.h|string.h|math.h|fix16.h|arm_acle.h')
 [ -n "$sys" ] && bad="$bad fixed/ or src/core/ include <$(tr '\n' ' ' <<<"$sys")>;"
 printf '#include "rt.h"\n#include "cli.h"\n' >"$T/layer.c"
 ctl=$(layer_bad "fixed src/core" "$T/layer.c")
 if [ -z "$bad" ] && [[ $ctl == *"includes cli.h"* ]]; then
-  pass "layers: fixed/ and src/core/ include only each other and stdint, stddef, string, math, fix16; src/scene/ adds only them ($(ls fixed/*.[ch] src/core/*.[ch] src/scene/*.[ch] | wc -l) files)"
+  pass "layers: fixed/ and src/core/ include only each other and stdint, stddef, string, math, fix16 (and ARM's intrinsics, arm_acle); src/scene/ adds only them ($(ls fixed/*.[ch] src/core/*.[ch] src/scene/*.[ch] | wc -l) files)"
 else
   fail "layers: $bad (control: $ctl)"
 fi
