@@ -20,6 +20,8 @@
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
+#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
+#                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
@@ -92,7 +94,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS)))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench fuzz soak fuzz-progs
+        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -268,6 +270,12 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
 $(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o): ARM_COLD_OPT := -Os
 
+# The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.
+PROFILE_PLUGIN := $(BUILD)/arm/qemu_profile.so
+$(PROFILE_PLUGIN): platform/arm/qemu_profile.c
+	@mkdir -p $(@D)
+	$(CC) -std=c11 $(WARN) -O2 -shared -fPIC -fvisibility=hidden -o $@ $<
+
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
 $(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o \
@@ -352,7 +360,7 @@ QEMU_BENCH ?= 0 1200 24
 SETTINGS ?=
 
 arm: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(PROFILE_PLUGIN)
 	@tests/arm_check.sh --print
 
 qemu: setup-gui
@@ -366,6 +374,11 @@ qemu-frames: setup-arm
 qemu-bench: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
 	@tests/qemu_bench.sh $(QEMU_BENCH)
+
+# FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
+qemu-profile: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(PROFILE_PLUGIN)
+	@platform/arm/profile.sh $(REAL) $(SETTINGS) $(if $(filter command line environment,$(origin FRAMES)),$(FRAMES),425 875)
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/out $(BUILD)/test $(BUILD)/gen \

@@ -14,6 +14,9 @@
 
 #include <fix16.h>
 #include <stdint.h>
+#if defined(__ARM_FEATURE_DSP)
+#include <arm_acle.h> /* __qadd, __qsub */
+#endif
 
 /* Fraction bits of unit, and of a product of two units. */
 #define FX_UF FX_UNIT_FRAC
@@ -64,16 +67,44 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
  * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
 void u_sincos_deg(real deg, unit *s, unit *c);
 
-/* Saturate a 64-bit integer to the range of real. */
-static inline real fx_sat(int64_t v)
+/* Saturate a 64-bit integer to the range of real, [-R_MAX, R_MAX], on a 64-bit machine: one
+ * range check of the 64-bit value (an addition, a compare and a branch). */
+static inline real fx_sat_w64(int64_t v)
 {
-    /* one unsigned compare: v in [-INT32_MAX, INT32_MAX] */
-    if (__builtin_expect((uint64_t)v + INT32_MAX > 2 * (uint64_t)INT32_MAX, 0)) {
+    if (__builtin_expect((uint64_t)v + R_MAX > 2 * (uint64_t)R_MAX, 0)) {
         FX_EVENT(FX_EV_OVERFLOW);
         return v > 0 ? R_MAX : -R_MAX;
     }
     return (real)v;
 }
+
+/* The same on a 32-bit core, where that check is a 64-bit addition and compare: v is in range
+ * when its high word is the sign of its low word and the low word is not INT32_MIN, two
+ * compares of 32-bit words that the compiler turns into conditional moves (cmp, mvnne, eorne,
+ * cmp, movlt on ARM: no branch, no literal). test_numeric checks that both give the same. */
+static inline real fx_sat_w32(int64_t v)
+{
+    int32_t lo = (int32_t)v, hi = (int32_t)((uint64_t)v >> 32);
+#if FX_COUNT_EVENTS
+    if (hi != (lo >> 31) || lo == INT32_MIN)
+        FX_EVENT(FX_EV_OVERFLOW);
+#endif
+    if (hi != (lo >> 31))
+        lo = (hi >> 31) ^ R_MAX; /* R_MAX; for a negative v INT32_MIN, made -R_MAX below */
+    if (lo == INT32_MIN)
+        lo = -R_MAX;
+    return lo;
+}
+
+/* 1 where a 64-bit value fits a register. */
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define FX_WORD64 1
+#else
+#define FX_WORD64 0
+#endif
+
+/* Saturate a 64-bit integer to the range of real (counting FX_EV_OVERFLOW when it does). */
+static inline real fx_sat(int64_t v) { return FX_WORD64 ? fx_sat_w64(v) : fx_sat_w32(v); }
 
 /* Round a 64-bit value with `s` fraction bits to an integer (s >= 1), half up. */
 static inline int64_t fx_round_shift(int64_t v, int s)
@@ -101,9 +132,34 @@ static inline real r_from_ratio(int32_t num, int32_t den)
     return fx_sat(n >= 0 ? (n + den / 2) / den : -((-n + den / 2) / den));
 }
 
-static inline real r_add(real a, real b) { return fx_sat((int64_t)a + b); }
+/* ARMv5TE and later DSP cores saturate a 32-bit sum in one instruction (qadd, qsub: to INT32_MIN
+ * or INT32_MAX); only INT32_MIN is left to move to -R_MAX. The same results as fx_sat of the
+ * 64-bit sum, which the other targets and the event-counting builds use. */
+#if defined(__ARM_FEATURE_DSP) && !FX_COUNT_EVENTS
+#define FX_QADD 1
+#else
+#define FX_QADD 0
+#endif
 
-static inline real r_sub(real a, real b) { return fx_sat((int64_t)a - b); }
+static inline real r_add(real a, real b)
+{
+#if FX_QADD
+    int32_t r = __qadd(a, b);
+    return r == INT32_MIN ? -R_MAX : r;
+#else
+    return fx_sat((int64_t)a + b);
+#endif
+}
+
+static inline real r_sub(real a, real b)
+{
+#if FX_QADD
+    int32_t r = __qsub(a, b);
+    return r == INT32_MIN ? -R_MAX : r;
+#else
+    return fx_sat((int64_t)a - b);
+#endif
+}
 
 static inline real r_neg(real a) { return fx_sat(-(int64_t)a); }
 
@@ -114,16 +170,12 @@ static inline real r_abs(real a) { return a < 0 ? r_neg(a) : a; }
  * a million times per frame. On overflow it saturates where fix16_mul returns 0x80000000. */
 static inline real r_mul(real a, real b)
 {
+    /* One signed 32x32 -> 64 multiply (smull), rounded as libfixmath rounds (negatives from
+     * product - 1, then half up: one addend, 0x8000 or 0x7FFF), and fx_sat of the quotient:
+     * it saturates exactly where the rounded result does not fit 32 bits or is fix16_overflow
+     * (INT32_MIN), and by the sign of the product, which is the sign of the quotient then. */
     int64_t p = (int64_t)a * b;
-    /* The rounded result fits in 32 bits and is not fix16_overflow (INT32_MIN) exactly when
-     * p lies in [-2^47 + 2^15 + 1, 2^47 - 2^15): one unsigned range check. */
-    const int64_t lo = -((int64_t)1 << 47) + (1 << 15) + 1, hi = ((int64_t)1 << 47) - (1 << 15);
-    if (__builtin_expect((uint64_t)(p - lo) >= (uint64_t)(hi - lo), 0)) {
-        FX_EVENT(FX_EV_OVERFLOW);
-        return ((a < 0) != (b < 0)) ? -R_MAX : R_MAX;
-    }
-    int64_t q = p + (p >> 63); /* libfixmath rounds negatives from product - 1 */
-    return (real)((q + 0x8000) >> 16);
+    return fx_sat((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 
 /* a * 2^-n for n >= 0, rounded. */
@@ -232,20 +284,14 @@ static inline real r_div_u(real a, unit b)
 
 /* ---- unit: Q2.30 (or Q16.16) ------------------------------------------------------------- */
 
-static inline unit u_sat(int64_t v)
-{
-    if (__builtin_expect((uint64_t)v + INT32_MAX > 2 * (uint64_t)INT32_MAX, 0)) {
-        FX_EVENT(FX_EV_OVERFLOW);
-        return v > 0 ? INT32_MAX : -INT32_MAX;
-    }
-    return (unit)v;
-}
+/* Saturate to unit's 32 bits, +-INT32_MAX: fx_sat. */
+static inline unit u_sat(int64_t v) { return fx_sat(v); }
 
 static inline unit u_mul(unit a, unit b) { return u_sat(fx_round_shift((int64_t)a * b, FX_UF)); }
 
-static inline unit u_neg(unit a) { return u_sat(-(int64_t)a); }
+static inline unit u_neg(unit a) { return r_neg(a); }
 
-static inline unit u_add(unit a, unit b) { return u_sat((int64_t)a + b); }
+static inline unit u_add(unit a, unit b) { return r_add(a, b); }
 
 /* unit * integer (pixel offsets along the image plane). */
 static inline unit u_muli(unit a, int32_t i) { return u_sat((int64_t)a * i); }

@@ -51,6 +51,26 @@ else
   fail "arm: instruction counts differ between two runs"
 fi
 
+# The profiler (make qemu-profile): the TCG plugin's count inside frames 425 and 875 equals the
+# board's own icount figures for them (from the run above) to within 200 instructions a frame,
+# known hot functions have their share, and the plugin leaves the pictures alone.
+if PROFILE_TOP=200 platform/arm/profile.sh fixed 425 875 >"$T/profile.txt" 2>&1; then
+  inside=$(sed -n 's/^inside the frames: \([0-9]*\) instructions over 2 frames.*/\1/p' "$T/profile.txt")
+  board=$(sed -n 's/^frame=\(425\|875\) instructions=\([0-9]*\)$/\2/p' "$T/fixed-1.log" | awk '{ s += $1 } END { print s + 0 }')
+  share() { awk -v f="$1" '/^by containing function/ { on = 1; next } /^$/ { on = 0 } on && $3 == f { print $2 }' "$T/profile.txt"; }
+  occ=$(share rt_occluded)
+  norm=$(share fx_norm64)
+  if [ -n "$inside" ] && [ "$board" -gt 0 ] && [ $((inside > board ? inside - board : board - inside)) -le 400 ] &&
+     [ -n "$occ" ] && [ "$occ" != "0.00%" ] && [ -n "$norm" ] && [ "$norm" != "0.00%" ] &&
+     cmp -s "$(ppm fixed 425)" "$T/host-fixed-425.ppm" && cmp -s "$(ppm fixed 875)" "$T/host-fixed-875.ppm"; then
+    pass "arm: qemu-profile frames 425 875: $inside instructions inside the frames, the board's icount $board; rt_occluded $occ, fx_norm64 $norm; frames unchanged"
+  else
+    fail "arm: qemu-profile frames 425 875: plugin $inside vs board $board instructions, rt_occluded '$occ', fx_norm64 '$norm' (or the frames changed): $(tail -3 "$T/profile.txt" | tr '\n' ' ')"
+  fi
+else
+  fail "arm: qemu-profile frames 425 875: $(tail -3 "$T/profile.txt" | tr '\n' ' ')"
+fi
+
 # The cheaper fixed-point variant (unit in Q16.16, build/arm/intro-fixed16.elf): its frames
 # equal the host's rt-fixed16 byte for byte too.
 if platform/arm/qemu.sh frames fixed16 "${FRAMES[@]}" >"$T/fixed16.log" 2>&1; then

@@ -1039,6 +1039,34 @@ static void test_fixed_internals(void **state)
         }
     }
 
+    /* fx_sat's two forms, for 64-bit machines and for 32-bit cores (the ARM board), give the
+     * same values and count the same overflows around every edge of real's range */
+    static const int64_t sat_edges[] = {0,         INT32_MAX, INT32_MIN,       (int64_t)1 << 32,
+                                        INT64_MAX, INT64_MIN, (int64_t)3 << 31};
+    for (int k = 0; k < 7 * 2 * 9 + 100000; k++) {
+        int64_t v;
+        if (k < 7 * 2 * 9) {
+            int64_t e = sat_edges[k / 18];
+            int d = k % 9 - 4;
+            v = (k / 9) % 2 && e != INT64_MIN ? -e : e;
+            v = d < 0 ? (v >= INT64_MIN - d ? v + d : v) : (v <= INT64_MAX - d ? v + d : v);
+        } else {
+            v = (int64_t)rng() >> (rng() % 64);
+        }
+        fx_events_reset();
+        real w32 = fx_sat_w32(v);
+        unsigned long e32 = fx_event_count[FX_EV_OVERFLOW];
+        fx_events_reset();
+        real w64 = fx_sat_w64(v);
+        unsigned long e64 = fx_event_count[FX_EV_OVERFLOW];
+        if (w32 != w64 || e32 != e64 || (e64 != 0) != (v < -R_MAX || v > R_MAX)) {
+            n_failed++;
+            print_error("fx_sat(%lld): 32-bit form %d (%lu events), 64-bit form %d (%lu)\n",
+                        (long long)v, (int)w32, e32, (int)w64, e64);
+        }
+    }
+    fx_events_reset();
+
     static const uint64_t ns[] = {0,
                                   1,
                                   2,

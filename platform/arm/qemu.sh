@@ -15,7 +15,8 @@
 # time, so the counts are exact and repeatable) and print one `frame=N instructions=M` line per
 # frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use (`ram: ...`). The exit status
 # is the guest's. QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600): a hung guest
-# is an error, not a hang.
+# is an error, not a hang. With QEMU_PLUGIN=FILE.so,ARGS (frames and bench), QEMU loads that TCG
+# plugin (platform/arm/profile.sh passes its instruction counter this way).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -82,10 +83,12 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
+plugin=()
+[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
 status=0
 # --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
 # SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
-timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none \
+timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
   -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
