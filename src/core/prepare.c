@@ -153,7 +153,7 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach)
     return k > 0 ? k : 0;
 }
 
-/* The bounding sphere of the scene's spheres (rt_scene.bound_*): centred in the box of their
+/* The bounding sphere of the scene's spheres (rt_scene.bound_*), centred in the box of their
  * extents, its radius the largest |c_i - centre| + r_i rounded up. Any sphere test that could
  * report a hit on a sphere inside reports a point within r_i + rho_i of c_i, rho_i its
  * rounding (scene_cull: at most 2^-10 + (D_i + r_i) 2^-14), so within R + rho_i of the centre,
@@ -198,8 +198,6 @@ static void scene_bound(rt_scene *s)
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->bound_shadow_cull[l] =
             l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
-    s->bound_eye_l = v3_sub_in(c, s->eye_at);
-    s->bound_eye_cull = scene_cull(&b, s->eye_at, 0);
 }
 
 void rt_scene_prepare(rt_scene *s)

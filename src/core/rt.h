@@ -129,15 +129,13 @@ typedef struct rt_scene {
     vec3 eye_l[RT_MAX_OBJECTS];
     wide eye_cull[RT_MAX_OBJECTS];
     /* A sphere around every sphere of the scene (bound_set: their bits, 0 when there are
-     * fewer than two), with the same rejections as one sphere: a shadow ray toward light l or
-     * a primary ray that it rejects (bound_shadow_cull[l], bound_eye_l and bound_eye_cull as
-     * above) misses every sphere inside, whose own tests are then skipped. */
+     * fewer than two), with the shadow-ray rejection of one sphere (bound_shadow_cull[l], as
+     * shadow_cull): a shadow ray it rejects misses every sphere inside, whose own tests are then
+     * skipped. (Primary rays gain nothing from it: the view is mostly inside its cone.) */
     uint32_t bound_set;
     vec3 bound_center;
     real bound_radius;
     wide bound_shadow_cull[RT_MAX_LIGHTS];
-    vec3 bound_eye_l;
-    wide bound_eye_cull;
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is

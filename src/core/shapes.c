@@ -100,19 +100,10 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
 {
     real tmax = R_T_MAX;
     int best = -1;
-    uint32_t skip = 0; /* spheres the bounding sphere's rejection covers */
-    wide kb = s->bound_eye_cull;
-    if (kb > 0) {
-        real tb = v3_dot_d_in(s->bound_eye_l, d);
-        if (tb <= 0 || w_sq(tb) < kb)
-            skip = s->bound_set;
-    }
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
         int h;
-        if (skip & ((uint32_t)1 << i))
-            continue;
         if (o->kind == RT_SPHERE) {
             /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
              * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */
