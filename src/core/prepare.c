@@ -200,6 +200,23 @@ static void scene_bound(rt_scene *s)
             l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
 }
 
+/* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
+ * (a product of rounded products of non-negative values), 0 at 0 and 1 at 1, so every v up to
+ * the result gives 0 and the highlight term can be skipped there, exactly. */
+static unit scene_spec_zero(unsigned h)
+{
+    unit lo = 0, hi = U_ONE;
+    for (;;) {
+        unit mid = u_add(lo, u_divi(u_add(hi, u_neg(lo)), 2));
+        if (mid == lo || mid == hi)
+            return lo;
+        if (u_pow(mid, h) == 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+}
+
 void rt_scene_prepare(rt_scene *s)
 {
     for (int i = 0; i < s->nobjects; i++) {
@@ -219,6 +236,7 @@ void rt_scene_prepare(rt_scene *s)
     for (int i = 0; i < s->nmaterials; i++) {
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
+        m->spec_zero = m->specular > 0 ? scene_spec_zero(m->shininess) : 0;
     }
     s->near_lights = 0;
     for (int l = 0; l < s->nlights; l++)

@@ -56,6 +56,7 @@ typedef struct rt_material {
     real transmit;      /* weight of the refracted ray, [0, 1] */
     real ior;           /* index of refraction (inside / outside), in [1, 3] */
     real ior_inv;       /* 1 / ior, kept so that no ray divides */
+    unit spec_zero;     /* u_pow(v, shininess) is exactly 0 for every v <= this */
 } rt_material;
 
 enum rt_shape_kind { RT_SPHERE, RT_PLANE, RT_SHAPE_COUNT };
@@ -223,7 +224,7 @@ typedef struct rt_shape_ops {
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 
-/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv) and
+/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
  * derives the effects the scene needs: effects, reach_depth and occluders. */
 void rt_scene_prepare(rt_scene *s);
 

@@ -109,7 +109,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                      * partial sum is within [-1, 1] (docs/numerics.md). */
                     unit ndn = u_neg(u_mul(ndl, dn));
                     unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
-                    if (vr > 0) {
+                    if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
                         real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
                         col = v3_madd(col, li->color, spec);
                         if (spec > RT_HIGHLIGHT_MIN)
