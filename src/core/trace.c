@@ -121,7 +121,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         if (level == 0)
             c->sample->light_state[i] = state;
     }
-    trace_record(c, id, level, v3_scale(col, weight));
+    /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
+    trace_record(c, id, level, weight == R_ONE ? col : v3_scale(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within
