@@ -26,6 +26,89 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
         sm->nhits++;
 }
 
+/* What one hit point looks like to the lights (trace_light's input). */
+typedef struct trace_hit {
+    vec3 p, p_out; /* the point, and lifted R_EPS_OFFSET off the surface */
+    dir3 n, d;     /* normal facing the ray, and the ray's direction */
+    unit dn;       /* d . n (<= 0) */
+    rt_color base; /* diffuse colour at p */
+    const rt_material *m;
+    int id, inside; /* object hit; 1 when hit from behind */
+} trace_hit;
+
+/* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
+ * unlit, 1 lit, 2 highlight). Out of line: the caller's loop then keeps less in registers. */
+static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i,
+                                                     rt_color *col)
+{
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    const vec3 p = h->p, p_out = h->p_out;
+    const dir3 n = h->n, d = h->d;
+    const unit dn = h->dn;
+    const rt_color base = h->base;
+    const int id = h->id, inside = h->inside;
+    const rt_light *li = &s->lights[i];
+    /* A light behind the surface, or exactly on the point (no direction: it lights the
+     * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
+     * cost of a normalisation. */
+    vec3 to_light = v3_sub(li->pos, p);
+    real dist = 0;
+    dir3 l = {0, 0, 0};
+    if (v3_faces(to_light, n))
+        l = d3_norm(to_light, &dist);
+    unit ndl = d3_dot(n, l);
+    uint8_t state = 0;
+    if (ndl > 0) { /* the light is in front of the surface */
+        /* A convex surface never shadows its own lit side; seen from inside (glass) it
+         * can. Lights nothing can occlude cast no shadow ray at all. */
+        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+        if (!inside && !s->forced)
+            occ &= ~((uint32_t)1 << id);
+        int blocked = 0;
+        if (occ) {
+            /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+             * light, behind a surface that passes closer to the light than that (a light
+             * just above a floor seen from the underside of a ball: a false shadow). For
+             * such lights it is aimed from p_out itself and ends at the light. */
+            real sdist = dist;
+            dir3 sl = l;
+            if (s->near_lights & (1u << i)) {
+                vec3 to_light_out = v3_sub(li->pos, p_out);
+                sdist = 0;
+                if (!v3_is_zero(to_light_out))
+                    sl = d3_norm(to_light_out, &sdist);
+            }
+            /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+             * off the surface: a surface through the light itself (a light in a corner of
+             * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+            c->stats->rays_shadow++;
+            if (sdist > R_EPS_OFFSET)
+                blocked = rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
+        }
+        if (!blocked) {
+            state = 1;
+            *col = v3_madd(*col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
+            if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
+                /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
+                /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
+                 * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
+                 * and eye straight above the point), just outside Q2.30, while every
+                 * partial sum is within [-1, 1] (docs/numerics.md). */
+                unit ndn = u_neg(u_mul(ndl, dn));
+                unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
+                if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
+                    real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
+                    *col = v3_madd(*col, li->color, spec);
+                    if (spec > RT_HIGHLIGHT_MIN)
+                        state = 2;
+                }
+            }
+        }
+    }
+    return state;
+}
+
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
 static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level)
 {
@@ -58,66 +141,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
+    trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
     for (int i = 0; i < s->nlights; i++) {
-        const rt_light *li = &s->lights[i];
-        /* A light behind the surface, or exactly on the point (no direction: it lights the
-         * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
-         * cost of a normalisation. */
-        vec3 to_light = v3_sub(li->pos, p);
-        real dist = 0;
-        dir3 l = {0, 0, 0};
-        if (v3_faces(to_light, n))
-            l = d3_norm(to_light, &dist);
-        unit ndl = d3_dot(n, l);
-        uint8_t state = 0;
-        if (ndl > 0) { /* the light is in front of the surface */
-            /* A convex surface never shadows its own lit side; seen from inside (glass) it
-             * can. Lights nothing can occlude cast no shadow ray at all. */
-            uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-            if (!inside && !s->forced)
-                occ &= ~((uint32_t)1 << id);
-            int blocked = 0;
-            if (occ) {
-                /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
-                 * light, behind a surface that passes closer to the light than that (a light
-                 * just above a floor seen from the underside of a ball: a false shadow). For
-                 * such lights it is aimed from p_out itself and ends at the light. */
-                real sdist = dist;
-                dir3 sl = l;
-                if (s->near_lights & (1u << i)) {
-                    vec3 to_light_out = v3_sub(li->pos, p_out);
-                    sdist = 0;
-                    if (!v3_is_zero(to_light_out))
-                        sl = d3_norm(to_light_out, &sdist);
-                }
-                /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
-                 * off the surface: a surface through the light itself (a light in a corner of
-                 * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
-                c->stats->rays_shadow++;
-                if (sdist > R_EPS_OFFSET)
-                    blocked =
-                        rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
-            }
-            if (!blocked) {
-                state = 1;
-                col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
-                if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
-                    /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
-                     * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
-                     * and eye straight above the point), just outside Q2.30, while every
-                     * partial sum is within [-1, 1] (docs/numerics.md). */
-                    unit ndn = u_neg(u_mul(ndl, dn));
-                    unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
-                    if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
-                        real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
-                        col = v3_madd(col, li->color, spec);
-                        if (spec > RT_HIGHLIGHT_MIN)
-                            state = 2;
-                    }
-                }
-            }
-        }
+        uint8_t state = trace_light(c, &h, i, &col);
         if (level == 0)
             c->sample->light_state[i] = state;
     }
