@@ -434,11 +434,11 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     int sh = 2;
     while (big >> (31 + sh))
         sh++;
-    a >>= sh;
-    b >>= sh;
-    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + r.x * a + u.x * b;
-    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + r.y * a + u.y * b;
-    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + r.z * a + u.z * b;
+    /* below 2^31 once shifted: 32 x 32-bit products (one smull each on ARM) */
+    int32_t a32 = (int32_t)(a >> sh), b32 = (int32_t)(b >> sh);
+    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * a32 + (int64_t)u.x * b32;
+    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * a32 + (int64_t)u.y * b32;
+    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * a32 + (int64_t)u.z * b32;
     return fx_norm64(x, y, z, 60 - sh, 0);
 #else
     int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
