@@ -82,12 +82,22 @@ SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tm
                                 : plane_intersect(o, org, d, tmax, t);
 }
 
+/* The plane test out of line, for the loops over objects: planes are few, and the spheres'
+ * loop then keeps the ray in registers. */
+static __attribute__((noinline)) int shapes_plane(const rt_object *o, const vec3 *org,
+                                                  const dir3 *d, real tmax, real *t)
+{
+    return plane_intersect(o, *org, *d, tmax, t);
+}
+
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
 {
     int best = -1;
     for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
         real hit;
-        if (shapes_intersect(&s->objects[i], org, d, tmax, &hit)) {
+        if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
+                                 : shapes_plane(o, &org, &d, tmax, &hit)) {
             tmax = hit;
             best = i;
         }
