@@ -258,6 +258,10 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
+/* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one
+ * mirrored off a plane's front, from the offset origin). */
+int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t);
+
 /* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
  * starts from the frame's eye_l and eye_cull. */
 int rt_nearest_primary(const rt_scene *s, dir3 d, real *t);

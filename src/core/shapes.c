@@ -90,12 +90,14 @@ static __attribute__((noinline)) int shapes_plane(const rt_object *o, const vec3
     return plane_intersect(o, *org, *d, tmax, t);
 }
 
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
 {
     int best = -1;
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
+        if (i == skip)
+            continue;
         if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
                                  : shapes_plane(o, &org, &d, tmax, &hit)) {
             tmax = hit;
@@ -104,6 +106,11 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     }
     *t = tmax;
     return best;
+}
+
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    return rt_nearest_but(s, org, d, tmax, -1, t);
 }
 
 int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)

@@ -110,12 +110,13 @@ static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_h
 }
 
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
-static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level)
+static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
+                          int from)
 {
     const rt_scene *s = c->scene;
     real t;
     int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
-                                           : rt_nearest(s, org, d, R_T_MAX, &t);
+                                           : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
         return s->background;
@@ -165,7 +166,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
                 if (wt >= c->min_contrib) { /* adaptive recursion control */
                     c->stats->rays_refract++;
                     vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
-                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1);
+                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, -1);
                     col = v3_madd(col, tc, m->transmit);
                 }
             } else {
@@ -175,7 +176,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         real wr = r_mul(weight, kr);
         if (kr > 0 && wr >= c->min_contrib) {
             c->stats->rays_reflect++;
-            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1);
+            /* Mirrored off a plane's front, it cannot meet the plane again: it starts
+             * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
+             * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
+             * be off by more than that. Every object is tested when effects are forced.) */
+            int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
+            rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, self);
             col = v3_madd(col, rc, kr);
         }
     }
@@ -194,5 +200,5 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
         out->light_state[i] = 0;
     stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, -1);
 }
