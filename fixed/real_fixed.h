@@ -55,13 +55,10 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
-#if FX_UF == 16
-/* fx_norm64 for a vector of reals (Q16.16, frac = 16), in 32-bit arithmetic: unit in Q16.16 only. */
+/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
+ * arithmetic from the start. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
 #define FX_NORM_REALS(x, y, z, len) fx_norm32(x, y, z, len)
-#else
-#define FX_NORM_REALS(x, y, z, len) fx_norm64(x, y, z, 16, len)
-#endif
 
 /* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
  * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
