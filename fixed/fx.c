@@ -187,14 +187,14 @@ static dir3 fx_norm_zero(real *len)
 }
 
 /* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
- * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
- * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
- * product fits. */
+ * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then two
+ * Newton steps z += z (2^63 - m z) / 2^63 (2^-16, then the 2^-31 the arithmetic holds), each
+ * correction formed from e / 2^31 so that the product fits. */
 static inline uint64_t fx_recip63(uint64_t m)
 {
     uint64_t y = (uint64_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
     uint64_t z = (y * y) >> 29;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 2; i++) {
         int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
         z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
     }
@@ -228,11 +228,23 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
 }
 
 #if FX_UF == 30
+/* v r rounded and shifted right by 32 + t (t = 0 or 1), for |v| <= 2^30 and r in (2^32, 2^33]
+ * given as rl, its low word read as signed, and rh = (r - rl) / 2^32 (1 to 3), with half =
+ * 2^(31 + t): v r = v rl + v rh 2^32 is a signed 32x32-bit product and a 32-bit one added to its
+ * high word (the sum fits 64 bits, so forming it modulo 2^64 is exact); the rounding half is
+ * added, the high word taken and shifted by t. */
+static inline unit fx_mul_r(int32_t v, int32_t rl, uint32_t rh, uint64_t half, int t)
+{
+    uint64_t p = (uint64_t)((int64_t)v * rl) + ((uint64_t)((uint32_t)v * rh) << 32) + half;
+    return (unit)((int32_t)(p >> 32) >> t);
+}
+
 /* The unit vector, and the length (len may be NULL), of (sx, sy, sz) 2^-s in units of 2^-frac,
  * where the largest of |sx|, |sy|, |sz| is in [2^29, 2^30]: the sum of squares lies in
  * [2^58, 3 * 2^60). No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64)
  * (k = 2 or 4), r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each
- * component of the unit vector, in Q2.30, is sx r / 2^(34 - k/2), below 2^63 before the shift. */
+ * component of the unit vector, in Q2.30, is sx r / 2^(34 - k/2) (fx_mul_r), below 2^63 before
+ * the shift. */
 static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int frac, real *len)
 {
     dir3 d;
@@ -241,26 +253,27 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
     int k = __builtin_clz((uint32_t)(sum >> 32)) & ~1; /* the high word is at least 2^26 */
     uint64_t xs = sum << k;
     uint64_t r = fx_rsqrt64(xs);
-    /* sx r rounded and shifted right by 34 - k/2 = 32 + t: the rounding half added to the
-     * product, the high word taken, then shifted by t (0 or 1) */
     int t = k == 2;
-    int64_t half = (int64_t)1 << (31 + t);
-    d.x = (unit)((int32_t)((uint64_t)(sx * (int64_t)r + half) >> 32) >> t);
-    d.y = (unit)((int32_t)((uint64_t)(sy * (int64_t)r + half) >> 32) >> t);
-    d.z = (unit)((int32_t)((uint64_t)(sz * (int64_t)r + half) >> 32) >> t);
+    uint64_t half = (uint64_t)1 << (31 + t);
+    int32_t rl = (int32_t)(uint32_t)r;
+    uint32_t rh = (uint32_t)(r >> 32) + ((uint32_t)r >> 31);
+    d.x = fx_mul_r(sx, rl, rh, half, t);
+    d.y = fx_mul_r(sy, rl, rh, half, t);
+    d.z = fx_mul_r(sz, rl, rh, half, t);
     if (len) {
         /* sqrt(xs) = xs / sqrt(xs) ~ (xs / 2^32) (r / 2) / 2^31, sqrt(sum) = sqrt(xs) 2^(-k/2):
-         * l in [2^29, 2^31), to about a unit. |v| = l * 2^-s in units of 2^-frac; as Q16.16
-         * that is l * 2^(16 - frac - s). */
-        uint64_t p = ((xs >> 32) * (r >> 1)) >> (30 + k / 2);
-        uint32_t l = (uint32_t)((p + 1) >> 1);
+         * l in [2^29, 2^31], to about a unit: (xs / 2^32) (r / 2) / 2^(30 + k/2), halved and
+         * rounded, i.e. (product + 2^(30 + k/2)) / 2^(31 + k/2), taken as the high word shifted
+         * by 1 - t. |v| = l * 2^-s in units of 2^-frac; as Q16.16 that is l * 2^(16 - frac - s). */
+        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)1 << (32 - t)); /* below 2^63 */
+        uint32_t l = (uint32_t)(pl >> 32) >> (1 - t);
         int sh = 16 - frac - s;
         if (sh >= 32)
             *len = fx_sat(INT64_MAX);
         else if (sh >= 0)
             *len = fx_sat((int64_t)l << sh);
-        else if (sh > -62)
-            *len = fx_sat(fx_round_shift(l, -sh));
+        else if (sh > -32) /* rounded in 32 bits: l + 2^30 does not overflow */
+            *len = (real)((l + (1u << (-sh - 1))) >> -sh);
         else
             *len = 0;
     }
