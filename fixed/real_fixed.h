@@ -172,6 +172,24 @@ static inline real r_mul(real a, real b)
     return fx_sat((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 
+/* In-range arithmetic: r_mul, r_add and r_mul_u where docs/numerics.md bounds the result well
+ * inside real's range (colours and their weights, within [0, 1161]; points on rays from inside
+ * the scene cube, within 20481 of the centre). The release build forms them without the range
+ * check: the same results as the checked operations inside the bound. The event-counting builds
+ * (the san-* tests) use the checked operations, which count FX_EV_OVERFLOW: a broken bound shows
+ * there as an event, and as pictures that differ from the release build's. */
+#if FX_COUNT_EVENTS
+static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
+static inline real r_add_in(real a, real b) { return r_add(a, b); }
+#else
+static inline real r_mul_in(real a, real b)
+{
+    int64_t p = (int64_t)a * b;
+    return (real)((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
+}
+static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint32_t)b); }
+#endif
+
 /* a * 2^-n for n >= 0, rounded. */
 static inline real r_shr(real a, int n) { return n > 0 ? (real)fx_round_shift(a, n) : a; }
 
@@ -257,6 +275,16 @@ static inline real r_mod_pow2_twice(real x, real m) { return r_mod_pow2(r_muli(x
 
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u) { return fx_sat(fx_round_shift((int64_t)a * u, FX_UF)); }
+
+/* r_mul_u inside a proven bound (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
+#else
+static inline real r_mul_u_in(real a, unit u)
+{
+    return (real)fx_round_shift((int64_t)a * u, FX_UF);
+}
+#endif
 
 /* real / unit -> real, rounded to nearest. */
 static inline real r_div_u(real a, unit b)
