@@ -453,14 +453,17 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
     uint64_t big =
         (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
-    int sh = 2;
-    while (big >> (31 + sh))
-        sh++;
-    a >>= sh;
-    b >>= sh;
-    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + r.x * a + u.x * b;
-    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + r.y * a + u.y * b;
-    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + r.z * a + u.z * b;
+    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
+     * bits and every product is a signed 32x32-bit one (smull, smlal) */
+    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
+    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
+    if (__builtin_expect(sh == 2, 1)) /* the usual frame: constant shifts */
+        return fx_norm64((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
+                         (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
+                         (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs, 58, 0);
+    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * as + (int64_t)u.x * bs;
+    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * as + (int64_t)u.y * bs;
+    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * as + (int64_t)u.z * bs;
     return fx_norm64(x, y, z, 60 - sh, 0);
 #else
     int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
