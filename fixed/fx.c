@@ -363,10 +363,6 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
                           (int32_t)fx_round_shift(z, -s), s, frac, len);
 }
 
-/* Round v 2^-k to nearest (half up) for k >= 1, in 32 bits without overflow: with
- * q = floor(v 2^(1-k)), floor((q + 1) / 2) is floor(v 2^-k + 1/2). */
-static inline int32_t fx_round_shift32(int32_t v, int k) { return ((v >> (k - 1)) + 1) >> 1; }
-
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
     uint32_t m = (uint32_t)fx_max_abs3(x, y, z); /* at most 2^31 */

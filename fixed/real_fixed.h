@@ -109,6 +109,10 @@ static inline int64_t fx_round_shift(int64_t v, int s)
     return (v + ((int64_t)1 << (s - 1))) >> s;
 }
 
+/* fx_round_shift of a 32-bit value, s in [1, 31], in 32-bit arithmetic: the kept bits plus
+ * the first bit below them (the carry that adding one half would make); no overflow. */
+static inline int32_t fx_round_shift32(int32_t v, int s) { return (v >> s) + ((v >> (s - 1)) & 1); }
+
 /* ---- real: Q16.16 ------------------------------------------------------------------------ */
 
 static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
@@ -117,7 +121,7 @@ static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
 static inline real r_from_q16(int32_t v) { return (real)v; }
 
 /* Nearest integer (half up). */
-static inline int32_t r_to_int(real a) { return (int32_t)(((int64_t)a + 0x8000) >> 16); }
+static inline int32_t r_to_int(real a) { return fx_round_shift32(a, 16); }
 
 /* a * num / den for integers, rounded (den > 0): exact ratios such as pixel offsets. */
 static inline real r_from_ratio(int32_t num, int32_t den)
@@ -191,7 +195,10 @@ static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint3
 #endif
 
 /* a * 2^-n for n >= 0, rounded. */
-static inline real r_shr(real a, int n) { return n > 0 ? (real)fx_round_shift(a, n) : a; }
+static inline real r_shr(real a, int n)
+{
+    return n <= 0 ? a : n < 32 ? fx_round_shift32(a, n) : (real)fx_round_shift(a, n);
+}
 
 /* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
 static inline real r_mul_sign(real v, int g) { return fx_sat((int64_t)v * g); }
@@ -323,7 +330,7 @@ static inline unit u_from_real(real a) { return u_sat((int64_t)a * (1 << (FX_UF 
 static inline real u_to_real(unit a)
 {
 #if FX_UF > 16
-    return (real)fx_round_shift(a, FX_UF - 16);
+    return fx_round_shift32(a, FX_UF - 16);
 #else
     return a;
 #endif
@@ -426,10 +433,17 @@ static inline int v3_faces(vec3 v, dir3 d)
     return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
 }
 
+/* a . b for unit vectors: within 1 + 2^-28 (docs/numerics.md, "Dot products"), inside unit's
+ * range, so the release build takes it without the saturation test (see r_mul_in); the
+ * event-counting builds saturate and count. */
 static inline unit d3_dot(dir3 a, dir3 b)
 {
     int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+#if FX_COUNT_EVENTS
     return u_sat(fx_round_shift(s, FX_UF));
+#else
+    return (unit)fx_round_shift(s, FX_UF);
+#endif
 }
 
 /* d * s as a vector of reals. */
