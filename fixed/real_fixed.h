@@ -516,9 +516,10 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
     int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
     if (__builtin_expect(e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48), 0))
         return fx_norm64(x, y, z, 60, 0);
-    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56 */
-    int64_t e40 = e >> 20;
-    int64_t g = (e40 >> 1) - ((3 * ((e40 * e40) >> 40)) >> 3); /* below 2^27 */
+    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
+     * and g fit 32 bits, so the products are signed 32x32-bit ones */
+    int32_t e40 = (int32_t)(e >> 20);
+    int32_t g = (e40 >> 1) - (int32_t)((3 * (((int64_t)e40 * e40) >> 40)) >> 3); /* below 2^27 */
     dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
               b - (int32_t)fx_round_shift((int64_t)b * g, 40),
               c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
