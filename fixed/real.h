@@ -216,16 +216,17 @@ static inline real r_min(real a, real b) { return a < b ? a : b; }
 
 static inline real r_max(real a, real b) { return a > b ? a : b; }
 
-/* base^n for base in [0, 1] and n >= 1, by repeated squaring (the same steps in both builds). */
+/* base^n for base in [0, 1] (to a few steps of unit) and n >= 1, by repeated squaring (the same
+ * steps in both builds; every product within [0, 1], so u_mul_in). */
 static inline unit u_pow(unit base, unsigned n)
 {
     unit result = U_ONE;
     while (n) {
         if (n & 1u)
-            result = u_mul(result, base);
+            result = u_mul_in(result, base);
         n >>= 1;
         if (n)
-            base = u_mul(base, base);
+            base = u_mul_in(base, base);
     }
     return result;
 }

@@ -140,6 +140,8 @@ static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
 static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }
 
+static inline unit u_mul_in(unit a, unit b) { return u_mul(a, b); }
+
 static inline unit u_neg(unit a) { return -a; }
 
 static inline unit u_add(unit a, unit b) { return fl_chk(a + b); }
