@@ -88,7 +88,7 @@ static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_h
         }
         if (!blocked) {
             state = 1;
-            *col = v3_madd(*col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
+            *col = c3_madd(*col, c3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
             if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
                 /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
                 /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
@@ -98,8 +98,8 @@ static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_h
                 unit ndn = u_neg(u_mul(ndl, dn));
                 unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
                 if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
-                    real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
-                    *col = v3_madd(*col, li->color, spec);
+                    real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
+                    *col = c3_madd(*col, li->color, spec);
                     if (spec > RT_HIGHLIGHT_MIN)
                         state = 2;
                 }
@@ -118,12 +118,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
                                            : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
     if (id < 0) {
-        trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
+        trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
         return s->background;
     }
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
-    vec3 p = v3_along(org, d, t);
+    vec3 p = v3_along_in(org, d, t);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -133,7 +133,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         inside = 1;
     }
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
+    vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
     rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
@@ -141,7 +141,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
-    rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
+    rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
     trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
     for (int i = 0; i < s->nlights; i++) {
         uint8_t state = trace_light(c, &h, i, &col);
@@ -149,7 +149,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             c->sample->light_state[i] = state;
     }
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
-    trace_record(c, id, level, weight == R_ONE ? col : v3_scale(col, weight));
+    trace_record(c, id, level, weight == R_ONE ? col : c3_scale(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within
@@ -162,18 +162,18 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             dir3 rd;
             real eta = inside ? m->ior : m->ior_inv;
             if (d3_refract(d, n, eta, &rd)) {
-                real wt = r_mul(weight, m->transmit);
+                real wt = r_mul_in(weight, m->transmit);
                 if (wt >= c->min_contrib) { /* adaptive recursion control */
                     c->stats->rays_refract++;
-                    vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
+                    vec3 p_in = v3_along_in(p, n, r_neg(R_EPS_OFFSET));
                     rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, -1);
-                    col = v3_madd(col, tc, m->transmit);
+                    col = c3_madd(col, tc, m->transmit);
                 }
             } else {
                 kr = r_add(kr, m->transmit); /* total internal reflection */
             }
         }
-        real wr = r_mul(weight, kr);
+        real wr = r_mul_in(weight, kr);
         if (kr > 0 && wr >= c->min_contrib) {
             c->stats->rays_reflect++;
             /* Mirrored off a plane's front, it cannot meet the plane again: it starts
@@ -182,7 +182,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
              * be off by more than that. Every object is tested when effects are forced.) */
             int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
             rt_color rc = trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, self);
-            col = v3_madd(col, rc, kr);
+            col = c3_madd(col, rc, kr);
         }
     }
     return col;
