@@ -76,7 +76,7 @@ typedef struct ss_rgb {
 
 /* ss_wq[n][i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's fixed-point
  * value), for squares of up to RT_GRID_MAX pixels: a constant table, no division. */
-#define SS_W(i, n) ((n) > 0 ? ((i)*65536 + (n) / 2) / (n) : 0)
+#define SS_W(i, n) ((n) > 0 ? ((i)*65536 + (n) / 2) / ((n) > 0 ? (n) : 1) : 0)
 #define SS_ROW(n) \
     { \
         SS_W(0, n), SS_W(1, n), SS_W(2, n), SS_W(3, n), SS_W(4, n), SS_W(5, n), SS_W(6, n), \
