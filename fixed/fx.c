@@ -51,18 +51,16 @@ static const uint16_t fx_rsqrt_tab[384] = {
 };
 
 /* 2^62 / sqrt(x) for x in [2^62, 2^64), in (2^30, 2^31]: the table's 1/sqrt of X = x / 2^32
- * (9 bits), refined by `steps` Newton steps y += y (1 - X y^2 / 2^92) / 2 (9 -> 17 -> 31 bits,
- * where truncating x to X stops it). */
-static inline uint64_t fx_rsqrt62(uint64_t x, int steps)
+ * (9 bits), refined by one Newton step y += y (1 - X y^2 / 2^92) / 2 to 17 bits. Every operand
+ * fits 32 bits and every product 64 (umull on a 32-bit core): y < 2^31, y^2 / 2^30 < 2^32, and
+ * X y^2 / 2^62 is within 2^-7 of 2^30, so 3 * 2^30 minus it stays positive. */
+static inline uint32_t fx_rsqrt62(uint64_t x)
 {
-    uint64_t X = x >> 32;
-    uint64_t y = (uint64_t)fx_rsqrt_tab[(x >> 55) - 128] << 16;
-    for (int i = 0; i < steps; i++) {
-        uint64_t y2 = (y * y) >> 30;
-        uint64_t xy2 = (X * y2) >> 32;
-        y = (y * ((3u << 30) - xy2)) >> 31;
-    }
-    return y;
+    uint32_t X = (uint32_t)(x >> 32);
+    uint32_t y = (uint32_t)fx_rsqrt_tab[(X >> 23) - 128] << 16;
+    uint32_t y2 = (uint32_t)(((uint64_t)y * y) >> 30);
+    uint32_t xy2 = (uint32_t)(((uint64_t)X * y2) >> 32);
+    return (uint32_t)(((uint64_t)y * ((3u << 30) - xy2)) >> 31);
 }
 
 /* 2^64 / sqrt(x) for x in [2^62, 2^64), in (2^32, 2^33], to about 2^-33 relative (within a
@@ -70,14 +68,14 @@ static inline uint64_t fx_rsqrt62(uint64_t x, int steps)
  * second with the residual 1 - x y^2 formed from every bit of x and y^2. */
 static inline uint64_t fx_rsqrt64(uint64_t x)
 {
-    uint64_t y = fx_rsqrt62(x, 1); /* 2^62 / sqrt(x) within 2^-17 */
-    uint64_t q = y * y;            /* below 2^62 */
-    uint64_t xh = x >> 32, xl = x & 0xFFFFFFFFu, qh = q >> 32, ql = q & 0xFFFFFFFFu;
+    uint32_t y = fx_rsqrt62(x);   /* 2^62 / sqrt(x) within 2^-17, at most 2^31 */
+    uint64_t q = (uint64_t)y * y; /* at most 2^62 */
+    uint32_t xh = (uint32_t)(x >> 32), xl = (uint32_t)x, qh = (uint32_t)(q >> 32), ql = (uint32_t)q;
     /* x q / 2^64 = 2^60 (1 - e / 2^60), |e| < 2^45; the dropped xl ql / 2^64 is below 1 */
-    uint64_t t = xh * qh + ((xh * ql) >> 32) + ((xl * qh) >> 32);
+    uint64_t t = (uint64_t)xh * qh + (((uint64_t)xh * ql) >> 32) + (((uint64_t)xl * qh) >> 32);
     int64_t e = (int64_t)(((uint64_t)1 << 60) - t);
-    /* y (1 + e / 2^61), scaled by 4: y e / 2^59, with e / 2^14 below 2^31 */
-    return (y << 2) + (uint64_t)(((e >> 14) * (int64_t)y) >> 45);
+    /* y (1 + e / 2^61), scaled by 4: y e / 2^59, with e / 2^14 within +-2^31 */
+    return ((uint64_t)y << 2) + (uint64_t)(((int64_t)(int32_t)(e >> 14) * (int64_t)y) >> 45);
 }
 
 uint32_t fx_isqrt64(uint64_t n)
@@ -90,12 +88,12 @@ uint32_t fx_isqrt64(uint64_t n)
     int k = __builtin_clzll(n) & ~1;
     uint64_t x = n << k;
     uint32_t X = (uint32_t)(x >> 32);
-    uint64_t y = fx_rsqrt62(x, 1); /* 17 bits: the residual step below doubles them */
+    uint32_t y = fx_rsqrt62(x); /* 17 bits: the residual step below doubles them */
     uint64_t s = ((uint64_t)X * y) >> 30;
     if (s > UINT32_MAX)
         s = UINT32_MAX;
     /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
-    int64_t r = (int64_t)(x - s * s);
+    int64_t r = (int64_t)(x - (uint64_t)(uint32_t)s * (uint32_t)s);
     s = (uint64_t)((int64_t)s + (((r >> 16) * (int64_t)y) >> 47));
     /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
      * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
@@ -103,7 +101,7 @@ uint32_t fx_isqrt64(uint64_t n)
     uint64_t rr = h ? (s + ((uint64_t)1 << (h - 1))) >> h : s;
     if (rr > UINT32_MAX)
         rr = UINT32_MAX;
-    int64_t d = (int64_t)(n - rr * rr); /* |d| < 2^34: wraps back into range */
+    int64_t d = (int64_t)(n - (uint64_t)(uint32_t)rr * (uint32_t)rr); /* |d| < 2^34: wraps back */
     rr += (d > (int64_t)rr) - (d <= -(int64_t)rr);
     return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
 }
@@ -189,14 +187,14 @@ static dir3 fx_norm_zero(real *len)
 }
 
 /* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
- * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then three
- * Newton steps z += z (2^63 - m z) / 2^63, each correction formed from e / 2^31 so that the
- * product fits. */
+ * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then two
+ * Newton steps z += z (2^63 - m z) / 2^63 (2^-16, then the 2^-31 the arithmetic holds), each
+ * correction formed from e / 2^31 so that the product fits. */
 static inline uint64_t fx_recip63(uint64_t m)
 {
     uint64_t y = (uint64_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
     uint64_t z = (y * y) >> 29;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 2; i++) {
         int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
         z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
     }
@@ -230,48 +228,81 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
 }
 
 #if FX_UF == 30
-/* Scale v by 2^s (s may be negative; a left shift never overflows here, see below). */
-static int64_t fx_scale2(int64_t v, int s) { return s >= 0 ? v * ((int64_t)1 << s) : v >> -s; }
+/* v r rounded and shifted right by 32 + t (t = 0 or 1), for |v| <= 2^30 and r in (2^32, 2^33]
+ * given as rl, its low word read as signed, and rh = (r - rl) / 2^32 (1 to 3), with half =
+ * 2^(31 + t): v r = v rl + v rh 2^32 is a signed 32x32-bit product and a 32-bit one added to its
+ * high word (the sum fits 64 bits, so forming it modulo 2^64 is exact); the rounding half is
+ * added, the high word taken and shifted by t. */
+static inline unit fx_mul_r(int32_t v, int32_t rl, uint32_t rh, uint64_t half, int t)
+{
+    uint64_t p = (uint64_t)((int64_t)v * rl) + ((uint64_t)((uint32_t)v * rh) << 32) + half;
+    return (unit)((int32_t)(p >> 32) >> t);
+}
+
+/* The unit vector, and the length (len may be NULL), of (sx, sy, sz) 2^-s in units of 2^-frac,
+ * where the largest of |sx|, |sy|, |sz| is in [2^29, 2^30]: the sum of squares lies in
+ * [2^58, 3 * 2^60). No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64)
+ * (k = 2 or 4), r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each
+ * component of the unit vector, in Q2.30, is sx r / 2^(34 - k/2) (fx_mul_r), below 2^63 before
+ * the shift. */
+static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int frac, real *len)
+{
+    dir3 d;
+    uint64_t sum =
+        (uint64_t)((int64_t)sx * sx) + (uint64_t)((int64_t)sy * sy) + (uint64_t)((int64_t)sz * sz);
+    int k = __builtin_clz((uint32_t)(sum >> 32)) & ~1; /* the high word is at least 2^26 */
+    uint64_t xs = sum << k;
+    uint64_t r = fx_rsqrt64(xs);
+    int t = k == 2;
+    uint64_t half = (uint64_t)1 << (31 + t);
+    int32_t rl = (int32_t)(uint32_t)r;
+    uint32_t rh = (uint32_t)(r >> 32) + ((uint32_t)r >> 31);
+    d.x = fx_mul_r(sx, rl, rh, half, t);
+    d.y = fx_mul_r(sy, rl, rh, half, t);
+    d.z = fx_mul_r(sz, rl, rh, half, t);
+    if (len) {
+        /* sqrt(xs) = xs / sqrt(xs) ~ (xs / 2^32) (r / 2) / 2^31, sqrt(sum) = sqrt(xs) 2^(-k/2):
+         * l in [2^29, 2^31], to about a unit: (xs / 2^32) (r / 2) / 2^(30 + k/2), halved and
+         * rounded, i.e. (product + 2^(30 + k/2)) / 2^(31 + k/2), taken as the high word shifted
+         * by 1 - t. |v| = l * 2^-s in units of 2^-frac; as Q16.16 that is l * 2^(16 - frac - s). */
+        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)1 << (32 - t)); /* below 2^63 */
+        uint32_t l = (uint32_t)(pl >> 32) >> (1 - t);
+        int sh = 16 - frac - s;
+        if (sh >= 32)
+            *len = fx_sat(INT64_MAX);
+        else if (sh >= 0)
+            *len = fx_sat((int64_t)l << sh);
+        else if (sh > -32) /* rounded in 32 bits: l + 2^30 does not overflow */
+            *len = (real)((l + (1u << (-sh - 1))) >> -sh);
+        else
+            *len = 0;
+    }
+    return d;
+}
 
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     uint64_t m = fx_max_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    dir3 d;
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
-     * ones lose only bits far below the result's precision, and the sum of squares stays in
-     * [2^58, 3 * 2^60). */
+     * ones lose only bits far below the result's precision (shifted right, rounded down). */
     int s = __builtin_clzll(m) - 34;
-    int64_t sx = fx_scale2(x, s), sy = fx_scale2(y, s), sz = fx_scale2(z, s);
-    uint64_t sum = (uint64_t)(sx * sx) + (uint64_t)(sy * sy) + (uint64_t)(sz * sz);
-    /* No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64) (k = 2 or 4),
-     * r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each component
-     * of the unit vector, in Q2.30, is sx r / 2^(34 - k/2), below 2^63 before the shift. */
-    int k = __builtin_clzll(sum) & ~1;
-    uint64_t xs = sum << k;
-    uint64_t r = fx_rsqrt64(xs);
-    int sh = 34 - k / 2;
-    d.x = (unit)fx_round_shift(sx * (int64_t)r, sh);
-    d.y = (unit)fx_round_shift(sy * (int64_t)r, sh);
-    d.z = (unit)fx_round_shift(sz * (int64_t)r, sh);
-    if (len) {
-        /* sqrt(xs) = xs / sqrt(xs) ~ (xs / 2^32) (r / 2) / 2^31, sqrt(sum) = sqrt(xs) 2^(-k/2):
-         * l in [2^29, 2^31), to about a unit. |v| = l * 2^-s in units of 2^-frac; as Q16.16
-         * that is l * 2^(16 - frac - s). */
-        uint64_t p = ((xs >> 32) * (r >> 1)) >> (30 + k / 2);
-        uint32_t l = (uint32_t)((p + 1) >> 1);
-        sh = 16 - frac - s;
-        if (sh >= 32)
-            *len = fx_sat(INT64_MAX);
-        else if (sh >= 0)
-            *len = fx_sat((int64_t)l << sh);
-        else if (sh > -62)
-            *len = fx_sat(fx_round_shift(l, -sh));
-        else
-            *len = 0;
-    }
-    return d;
+    if (s >= 0)
+        return fx_norm_scaled((int32_t)(x * ((int64_t)1 << s)), (int32_t)(y * ((int64_t)1 << s)),
+                              (int32_t)(z * ((int64_t)1 << s)), s, frac, len);
+    return fx_norm_scaled((int32_t)(x >> -s), (int32_t)(y >> -s), (int32_t)(z >> -s), s, frac, len);
+}
+
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+{
+    uint32_t m = (uint32_t)fx_max_abs3(x, y, z); /* at most 2^31 */
+    if (m == 0)
+        return fx_norm_zero(len);
+    int s = __builtin_clz(m) - 2; /* m 2^s in [2^29, 2^30): s >= -2 */
+    if (s >= 0)
+        return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
+    return fx_norm_scaled(x >> -s, y >> -s, z >> -s, s, 16, len);
 }
 
 #else
@@ -331,10 +362,6 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
     return fx_norm_scaled((int32_t)fx_round_shift(x, -s), (int32_t)fx_round_shift(y, -s),
                           (int32_t)fx_round_shift(z, -s), s, frac, len);
 }
-
-/* Round v 2^-k to nearest (half up) for k >= 1, in 32 bits without overflow: with
- * q = floor(v 2^(1-k)), floor((q + 1) / 2) is floor(v 2^-k + 1/2). */
-static inline int32_t fx_round_shift32(int32_t v, int k) { return ((v >> (k - 1)) + 1) >> 1; }
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {

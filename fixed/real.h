@@ -157,11 +157,39 @@ static inline vec3 v3_mul(vec3 a, vec3 b)
 /* a + b * s, component-wise. */
 static inline vec3 v3_madd(vec3 a, vec3 b, real s) { return v3_add(a, v3_scale(b, s)); }
 
+/* Colours (rt_color): a * s, a * b component-wise, and a + b * s, by r_mul_in and r_add_in: no
+ * range check in the fixed release build, where the colour bound makes none necessary. */
+static inline vec3 c3_scale(vec3 a, real s)
+{
+    return v3(r_mul_in(a.x, s), r_mul_in(a.y, s), r_mul_in(a.z, s));
+}
+
+static inline vec3 c3_mul(vec3 a, vec3 b)
+{
+    return v3(r_mul_in(a.x, b.x), r_mul_in(a.y, b.y), r_mul_in(a.z, b.z));
+}
+
+static inline vec3 c3_madd(vec3 a, vec3 b, real s)
+{
+    return v3(r_add_in(a.x, r_mul_in(b.x, s)), r_add_in(a.y, r_mul_in(b.y, s)),
+              r_add_in(a.z, r_mul_in(b.z, s)));
+}
+
 /* The point o + d * t on a ray. */
 static inline vec3 v3_along(vec3 o, dir3 d, real t)
 {
     return v3(r_add(o.x, r_mul_u(t, d.x)), r_add(o.y, r_mul_u(t, d.y)),
               r_add(o.z, r_mul_u(t, d.z)));
+}
+
+/* v3_along where the result is known to lie inside real's range: o inside the scene cube (the
+ * eye, or a point checked with v3_within) and 0 <= t < R_T_MAX, so within R_SCENE_MAX + R_T_MAX
+ * = 20480 of the centre; or o such a point and |t| <= R_EPS_OFFSET. In the fixed release build
+ * it is formed without range checks (r_mul_u_in, r_add_in). */
+static inline vec3 v3_along_in(vec3 o, dir3 d, real t)
+{
+    return v3(r_add_in(o.x, r_mul_u_in(t, d.x)), r_add_in(o.y, r_mul_u_in(t, d.y)),
+              r_add_in(o.z, r_mul_u_in(t, d.z)));
 }
 
 /* Is every coordinate of p within [-lim, lim]? */
@@ -188,16 +216,17 @@ static inline real r_min(real a, real b) { return a < b ? a : b; }
 
 static inline real r_max(real a, real b) { return a > b ? a : b; }
 
-/* base^n for base in [0, 1] and n >= 1, by repeated squaring (the same steps in both builds). */
+/* base^n for base in [0, 1] (to a few steps of unit) and n >= 1, by repeated squaring (the same
+ * steps in both builds; every product within [0, 1], so u_mul_in). */
 static inline unit u_pow(unit base, unsigned n)
 {
     unit result = U_ONE;
     while (n) {
         if (n & 1u)
-            result = u_mul(result, base);
+            result = u_mul_in(result, base);
         n >>= 1;
         if (n)
-            base = u_mul(base, base);
+            base = u_mul_in(base, base);
     }
     return result;
 }

@@ -58,13 +58,10 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
-#if FX_UF == 16
-/* fx_norm64 for a vector of reals (Q16.16, frac = 16), in 32-bit arithmetic: unit in Q16.16 only. */
+/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
+ * arithmetic from the start. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
 #define FX_NORM_REALS(x, y, z, len) fx_norm32(x, y, z, len)
-#else
-#define FX_NORM_REALS(x, y, z, len) fx_norm64(x, y, z, 16, len)
-#endif
 
 /* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
  * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
@@ -115,6 +112,10 @@ static inline int64_t fx_round_shift(int64_t v, int s)
     return (v + ((int64_t)1 << (s - 1))) >> s;
 }
 
+/* fx_round_shift of a 32-bit value, s in [1, 31], in 32-bit arithmetic: the kept bits plus
+ * the first bit below them (the carry that adding one half would make); no overflow. */
+static inline int32_t fx_round_shift32(int32_t v, int s) { return (v >> s) + ((v >> (s - 1)) & 1); }
+
 /* ---- real: Q16.16 ------------------------------------------------------------------------ */
 
 static inline real r_from_int(int32_t i) { return fx_sat((int64_t)i * 65536); }
@@ -126,7 +127,7 @@ static inline real r_from_q16(int32_t v) { return (real)v; }
 static inline int32_t r_unit_to_q16(real a) { return a; }
 
 /* Nearest integer (half up). */
-static inline int32_t r_to_int(real a) { return (int32_t)(((int64_t)a + 0x8000) >> 16); }
+static inline int32_t r_to_int(real a) { return fx_round_shift32(a, 16); }
 
 /* a * num / den for integers, rounded (den > 0): exact ratios such as pixel offsets. */
 static inline real r_from_ratio(int32_t num, int32_t den)
@@ -181,8 +182,29 @@ static inline real r_mul(real a, real b)
     return fx_sat((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 
+/* In-range arithmetic: r_mul, r_add and r_mul_u where docs/numerics.md bounds the result well
+ * inside real's range (colours and their weights, within [0, 1161]; points on rays from inside
+ * the scene cube, within 20481 of the centre). The release build forms them without the range
+ * check: the same results as the checked operations inside the bound. The event-counting builds
+ * (the san-* tests) use the checked operations, which count FX_EV_OVERFLOW: a broken bound shows
+ * there as an event, and as pictures that differ from the release build's. */
+#if FX_COUNT_EVENTS
+static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
+static inline real r_add_in(real a, real b) { return r_add(a, b); }
+#else
+static inline real r_mul_in(real a, real b)
+{
+    int64_t p = (int64_t)a * b;
+    return (real)((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
+}
+static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint32_t)b); }
+#endif
+
 /* a * 2^-n for n >= 0, rounded. */
-static inline real r_shr(real a, int n) { return n > 0 ? (real)fx_round_shift(a, n) : a; }
+static inline real r_shr(real a, int n)
+{
+    return n <= 0 ? a : n < 32 ? fx_round_shift32(a, n) : (real)fx_round_shift(a, n);
+}
 
 /* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
 static inline real r_mul_sign(real v, int g) { return fx_sat((int64_t)v * g); }
@@ -267,6 +289,16 @@ static inline real r_mod_pow2_twice(real x, real m) { return r_mod_pow2(r_muli(x
 /* real * unit -> real, rounded. */
 static inline real r_mul_u(real a, unit u) { return fx_sat(fx_round_shift((int64_t)a * u, FX_UF)); }
 
+/* r_mul_u inside a proven bound (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
+#else
+static inline real r_mul_u_in(real a, unit u)
+{
+    return (real)fx_round_shift((int64_t)a * u, FX_UF);
+}
+#endif
+
 /* real / unit -> real, rounded to nearest. */
 static inline real r_div_u(real a, unit b)
 {
@@ -292,6 +324,14 @@ static inline unit u_sat(int64_t v) { return fx_sat(v); }
 
 static inline unit u_mul(unit a, unit b) { return u_sat(fx_round_shift((int64_t)a * b, FX_UF)); }
 
+/* u_mul of two values within [-1 - 2^-20, 1 + 2^-20] (powers of a cosine): the product stays
+ * inside unit's range, so the release build skips the saturation test (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline unit u_mul_in(unit a, unit b) { return u_mul(a, b); }
+#else
+static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift((int64_t)a * b, FX_UF); }
+#endif
+
 static inline unit u_neg(unit a) { return r_neg(a); }
 
 static inline unit u_add(unit a, unit b) { return r_add(a, b); }
@@ -304,7 +344,7 @@ static inline unit u_from_real(real a) { return u_sat((int64_t)a * (1 << (FX_UF 
 static inline real u_to_real(unit a)
 {
 #if FX_UF > 16
-    return (real)fx_round_shift(a, FX_UF - 16);
+    return fx_round_shift32(a, FX_UF - 16);
 #else
     return a;
 #endif
@@ -407,10 +447,17 @@ static inline int v3_faces(vec3 v, dir3 d)
     return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
 }
 
+/* a . b for unit vectors: within 1 + 2^-28 (docs/numerics.md, "Dot products"), inside unit's
+ * range, so the release build takes it without the saturation test (see r_mul_in); the
+ * event-counting builds saturate and count. */
 static inline unit d3_dot(dir3 a, dir3 b)
 {
     int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+#if FX_COUNT_EVENTS
     return u_sat(fx_round_shift(s, FX_UF));
+#else
+    return (unit)fx_round_shift(s, FX_UF);
+#endif
 }
 
 /* d * s as a vector of reals. */
@@ -434,14 +481,17 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
     uint64_t big =
         (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
-    int sh = 2;
-    while (big >> (31 + sh))
-        sh++;
-    a >>= sh;
-    b >>= sh;
-    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + r.x * a + u.x * b;
-    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + r.y * a + u.y * b;
-    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + r.z * a + u.z * b;
+    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
+     * bits and every product is a signed 32x32-bit one (smull, smlal) */
+    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
+    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
+    if (__builtin_expect(sh == 2, 1)) /* the usual frame: constant shifts */
+        return fx_norm64((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
+                         (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
+                         (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs, 58, 0);
+    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * as + (int64_t)u.x * bs;
+    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * as + (int64_t)u.y * bs;
+    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * as + (int64_t)u.z * bs;
     return fx_norm64(x, y, z, 60 - sh, 0);
 #else
     int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
@@ -480,9 +530,10 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
     int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
     if (__builtin_expect(e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48), 0))
         return fx_norm64(x, y, z, 60, 0);
-    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56 */
-    int64_t e40 = e >> 20;
-    int64_t g = (e40 >> 1) - ((3 * ((e40 * e40) >> 40)) >> 3); /* below 2^27 */
+    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
+     * and g fit 32 bits, so the products are signed 32x32-bit ones */
+    int32_t e40 = (int32_t)(e >> 20);
+    int32_t g = (e40 >> 1) - (int32_t)((3 * (((int64_t)e40 * e40) >> 40)) >> 3); /* below 2^27 */
     dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
               b - (int32_t)fx_round_shift((int64_t)b * g, 40),
               c - (int32_t)fx_round_shift((int64_t)c * g, 40)};

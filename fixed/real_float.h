@@ -66,6 +66,10 @@ static inline real r_shr(real a, int n)
 
 /* v * g for g in {-1, 0, 1}: g > 0 ? v : g < 0 ? -v : 0 (a product would give -0 for g = 0
  * and v < 0, so it stays a selection). */
+/* In-range arithmetic: the same operations (the fixed build's release form skips range checks). */
+static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
+static inline real r_add_in(real a, real b) { return r_add(a, b); }
+
 static inline real r_mul_sign(real v, int g) { return g > 0 ? v : (g < 0 ? -v : 0.0f); }
 
 static inline real r_muli(real a, int32_t i) { return fl_chk(a * (real)i); }
@@ -131,11 +135,15 @@ static inline real r_mod_pow2_twice(real x, real m)
 
 static inline real r_mul_u(real a, unit u) { return fl_chk(a * u); }
 
+static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
+
 static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
 /* ---- unit -------------------------------------------------------------------------------- */
 
 static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }
+
+static inline unit u_mul_in(unit a, unit b) { return u_mul(a, b); }
 
 static inline unit u_neg(unit a) { return -a; }
 

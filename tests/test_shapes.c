@@ -284,6 +284,99 @@ static void test_shadow_cull(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* The bounding sphere's rejection of shadow rays (rt_scene.bound_*) never changes a result:
+ * for clusters of 2 to 6 spheres and a light, shadow segments built as trace.c builds them that
+ * pass just outside or inside the bound, or graze a sphere touching it, are blocked through
+ * rt_occluded exactly when they are with the bound switched off (bound_set = 0, each sphere
+ * then tested on its own), and the bound does reject many of them, near misses included. */
+static void test_shadow_bound(void **state)
+{
+    (void)state;
+    static rt_scene s, plain;
+    int n = 100000, rejected = 0, near_rejected = 0, blocked = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 10 == 0 ? 1000.0 : 10.0, size = i % 10 == 0 ? 50.0 : 2.0;
+        s = (rt_scene){0};
+        s.nobjects = 2 + i % 5;
+        double ox = rnd(-span, span), oy = rnd(-span, span), oz = rnd(-span, span);
+        for (int j = 0; j < s.nobjects; j++)
+            s.objects[j] = sphere(ox + rnd(-size, size), oy + rnd(-size, size),
+                                  oz + rnd(-size, size), rnd(0.02, 1) * size);
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        s.nlights = 1;
+        double lx = ox + rnd(-8, 8) * size, ly = oy + rnd(-8, 8) * size,
+               lz = oz + rnd(-8, 8) * size;
+        s.lights[0].pos = vd(lx, ly, lz);
+        rt_scene_prepare(&s);
+        if (!s.bound_set)
+            fail_msg("no bound for %d spheres", s.nobjects);
+        plain = s;
+        plain.bound_set = 0;
+        /* a point q near the bound's surface (or, every third case, near a sphere's), at right
+         * angles to the light, and a surface point p beyond it as seen from the light */
+        double cx = to_d(s.bound_center.x), cy = to_d(s.bound_center.y),
+               cz = to_d(s.bound_center.z), rb = to_d(s.bound_radius);
+        if (i % 3 == 0) {
+            const rt_object *o = &s.objects[i % s.nobjects];
+            cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
+            rb = to_d(o->radius);
+        }
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double ax = cx - lx, ay = cy - ly, az = cz - lz;
+        double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
+        ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
+        double rq = i % 4 == 1 ? rb * rnd(1, 3) : rb + rnd(-0.003, 0.02) + rb * rnd(0, 0.002);
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+        double qx = cx + ux / un * rq, qy = cy + uy / un * rq, qz = cz + uz / un * rq;
+        double k = rnd(1.02, 3);
+        vec3 p = vd(lx + (qx - lx) * k, ly + (qy - ly) * k, lz + (qz - lz) * k);
+        if (!v3_within(p, R_SCENE_MAX))
+            continue;
+        vec3 to_light = v3_sub(s.lights[0].pos, p);
+        if (v3_is_zero(to_light))
+            continue;
+        real dist;
+        dir3 l = d3_norm(to_light, &dist);
+        dir3 nrm = d3_norm(
+            vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9), to_d(l.z) + rnd(-0.9, 0.9)),
+            0);
+        if (d3_dot(nrm, l) <= 0)
+            continue;
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        if (i & 1) { /* aimed from the lifted point, as for a light near a surface */
+            vec3 t2 = v3_sub(s.lights[0].pos, p_out);
+            if (v3_is_zero(t2))
+                continue;
+            l = d3_norm(t2, &dist);
+        }
+        if (dist <= R_EPS_OFFSET)
+            continue;
+        real seg = r_sub(dist, R_EPS_OFFSET);
+        uint32_t all = ((uint32_t)1 << s.nobjects) - 1;
+        rt_stats st = {0}, st_plain = {0};
+        int got = rt_occluded(&s, &st, 0, all, p_out, l, seg);
+        int want = rt_occluded(&plain, &st_plain, 0, all, p_out, l, seg);
+        if (got != want)
+            fail_msg("with the bound %d, without %d (case %d, %d spheres)", got, want, i,
+                     s.nobjects);
+        blocked += want;
+        if (st.shadow_tests < st_plain.shadow_tests && !want) {
+            rejected++;
+            if (i % 3 != 0 && i % 4 != 1)
+                near_rejected++;
+        }
+    }
+    print_message("shadow bound: %d segments, %d blocked, %d rejected by the bound (%d of them "
+                  "passing within 0.02 + 0.2%% of its radius)\n",
+                  n, blocked, rejected, near_rejected);
+    assert_true(blocked > n / 20);
+    assert_true(rejected > n / 20);
+    assert_true(near_rejected > n / 500);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 /* rt_nearest_primary (spheres' l and quick rejection prepared for the camera's eye) finds the
  * same object at the same distance as rt_nearest, for rays from the eye that graze spheres,
  * miss them by a hair or start inside one, and rejects early on many of them. */
@@ -457,10 +550,10 @@ static void test_far_mirror_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sphere_cases),     cmocka_unit_test(test_plane_cases),
-        cmocka_unit_test(test_sphere_random),    cmocka_unit_test(test_shadow_cull),
-        cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_sample_record),
-        cmocka_unit_test(test_far_mirror_chain),
+        cmocka_unit_test(test_sphere_cases),  cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random), cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_shadow_bound),  cmocka_unit_test(test_primary_cull),
+        cmocka_unit_test(test_sample_record), cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,7 +9,8 @@
 # `arm-none-eabi-addr2line -f -i` and summed:
 #   - by function, inlined code counted in the function it was written in (the innermost
 #     inlined function: r_mul, fx_sat, v3_dot_d ...);
-#   - by containing function (the symbol the code was compiled into: rt_occluded, ss_fill ...);
+#   - by containing function (the symbol the code was compiled into: rt_occluded, ss_fill ...),
+#     with its calls (how often its first instruction ran) and instructions a call;
 #   - by pair (inlined function in containing function).
 # Prints the tables (PROFILE_TOP rows each, default 25) and checks that the plugin's total
 # inside the frames equals the board's own icount figures (the `frame=N instructions=M`
@@ -65,7 +66,8 @@ awk 'NR > 3 { print "0x" $1 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a 
       if (++line % 2 == 1) fn[++n] = $0
       next
     }
-    file == 3 && /^frame=/ { sub(/.*instructions=/, ""); board += $0; frames++ }
+    file == 3 && /^frame=/ { sub(/.*instructions=/, ""); board += $0; frames++; next }
+    file == 4 && ($2 == "T" || $2 == "t") { entry[$3] = "0x" $1 }
     function flush(  c, inner, outer) {
       if (addr == "" || n == 0) return
       c = cnt[addr]
@@ -75,15 +77,19 @@ awk 'NR > 3 { print "0x" $1 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a 
       mapped += c
       addr = ""
     }
-    function table(title, a,   k, i, j, t, keys, m) {
+    function table(title, a, calls,   k, i, j, t, keys, m, c) {
       m = 0
       for (k in a) keys[++m] = k
       # selection of the largest rows (a few hundred keys at most)
-      printf "\n%s\n%14s %7s  %s\n", title, "instructions", "share", "function"
+      printf "\n%s\n%14s %7s  %s\n", title, "instructions", "share", calls ? "function                          calls  a call" : "function"
       for (i = 1; i <= m && i <= top; i++) {
         for (j = i + 1; j <= m; j++)
           if (a[keys[j]] > a[keys[i]]) { t = keys[i]; keys[i] = keys[j]; keys[j] = t }
-        printf "%14d %6.2f%%  %s\n", a[keys[i]], 100 * a[keys[i]] / total["window_total"], keys[i]
+        c = calls && (keys[i] in entry) ? cnt[entry[keys[i]]] + 0 : 0
+        if (c > 0)
+          printf "%14d %6.2f%%  %-28s %10d %7.0f\n", a[keys[i]], 100 * a[keys[i]] / total["window_total"], keys[i], c, a[keys[i]] / c
+        else
+          printf "%14d %6.2f%%  %s\n", a[keys[i]], 100 * a[keys[i]] / total["window_total"], keys[i]
       }
     }
     END {
@@ -92,13 +98,13 @@ awk 'NR > 3 { print "0x" $1 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a 
       printf "\ninside the frames: %d instructions over %d frames (%.1f M a frame)\n", w, k, w / k / 1e6
       printf "the board'\''s icount figures for the same frames: %d over %d frames; difference %d (%.1f a frame)\n", board, frames, w - board, (w - board) / (frames ? frames : 1)
       printf "outside the frames (boot, scene evaluation, PPM writes): %d instructions; whole run %d\n", r - w, r
-      table("by function (inlined code counted in the function it was written in):", by_inner)
-      table("by containing function (the symbol the code was compiled into):", by_outer)
-      table("by inlined function within containing function:", by_pair)
+      table("by function (inlined code counted in the function it was written in):", by_inner, 0)
+      table("by containing function (the symbol the code was compiled into; calls: times its first instruction ran):", by_outer, 1)
+      table("by inlined function within containing function:", by_pair, 0)
       d = w - board; if (d < 0) d = -d
       if (k != frames || frames == 0 || d > 200 * frames) {
         printf "\nprofile: error: the plugin counted %d instructions in %d frames, the board %d in %d\n", w, k, board, frames
         exit 1
       }
-    }' "$counts" "$out/profile-$real.lines" "$log"
+    }' "$counts" "$out/profile-$real.lines" "$log" <(arm-none-eabi-nm "$elf")
 } | tee "$report"

@@ -153,7 +153,7 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach)
     return k > 0 ? k : 0;
 }
 
-/* The bounding sphere of the scene's spheres (rt_scene.bound_*): centred in the box of their
+/* The bounding sphere of the scene's spheres (rt_scene.bound_*), centred in the box of their
  * extents, its radius the largest |c_i - centre| + r_i rounded up. Any sphere test that could
  * report a hit on a sphere inside reports a point within r_i + rho_i of c_i, rho_i its
  * rounding (scene_cull: at most 2^-10 + (D_i + r_i) 2^-14), so within R + rho_i of the centre,
@@ -198,8 +198,23 @@ static void scene_bound(rt_scene *s)
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->bound_shadow_cull[l] =
             l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
-    s->bound_eye_l = v3_sub_in(c, s->eye_at);
-    s->bound_eye_cull = scene_cull(&b, s->eye_at, 0);
+}
+
+/* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
+ * (a product of rounded products of non-negative values), 0 at 0 and 1 at 1, so every v up to
+ * the result gives 0 and the highlight term can be skipped there, exactly. */
+static unit scene_spec_zero(unsigned h)
+{
+    unit lo = 0, hi = U_ONE;
+    for (;;) {
+        unit mid = u_add(lo, u_divi(u_add(hi, u_neg(lo)), 2));
+        if (mid == lo || mid == hi)
+            return lo;
+        if (u_pow(mid, h) == 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
 }
 
 void rt_scene_prepare(rt_scene *s)
@@ -221,6 +236,7 @@ void rt_scene_prepare(rt_scene *s)
     for (int i = 0; i < s->nmaterials; i++) {
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
+        m->spec_zero = m->specular > 0 ? scene_spec_zero(m->shininess) : 0;
     }
     s->near_lights = 0;
     for (int l = 0; l < s->nlights; l++)

@@ -56,6 +56,7 @@ typedef struct rt_material {
     real transmit;      /* weight of the refracted ray, [0, 1] */
     real ior;           /* index of refraction (inside / outside), in [1, 3] */
     real ior_inv;       /* 1 / ior, kept so that no ray divides */
+    unit spec_zero;     /* u_pow(v, shininess) is exactly 0 for every v <= this */
 } rt_material;
 
 enum rt_shape_kind { RT_SPHERE, RT_PLANE, RT_SHAPE_COUNT };
@@ -129,15 +130,13 @@ typedef struct rt_scene {
     vec3 eye_l[RT_MAX_OBJECTS];
     wide eye_cull[RT_MAX_OBJECTS];
     /* A sphere around every sphere of the scene (bound_set: their bits, 0 when there are
-     * fewer than two), with the same rejections as one sphere: a shadow ray toward light l or
-     * a primary ray that it rejects (bound_shadow_cull[l], bound_eye_l and bound_eye_cull as
-     * above) misses every sphere inside, whose own tests are then skipped. */
+     * fewer than two), with the shadow-ray rejection of one sphere (bound_shadow_cull[l], as
+     * shadow_cull): a shadow ray it rejects misses every sphere inside, whose own tests are then
+     * skipped. (Primary rays gain nothing from it: the view is mostly inside its cone.) */
     uint32_t bound_set;
     vec3 bound_center;
     real bound_radius;
     wide bound_shadow_cull[RT_MAX_LIGHTS];
-    vec3 bound_eye_l;
-    wide bound_eye_cull;
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
@@ -222,7 +221,7 @@ typedef struct rt_shape_ops {
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 
-/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv) and
+/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
  * derives the effects the scene needs: effects, reach_depth and occluders. */
 void rt_scene_prepare(rt_scene *s);
 
@@ -255,6 +254,10 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
+
+/* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one
+ * mirrored off a plane's front, from the offset origin). */
+int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t);
 
 /* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
  * starts from the frame's eye_l and eye_cull. */

@@ -82,12 +82,24 @@ SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tm
                                 : plane_intersect(o, org, d, tmax, t);
 }
 
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+/* The plane test out of line, for the loops over objects: planes are few, and the spheres'
+ * loop then keeps the ray in registers. */
+static __attribute__((noinline)) int shapes_plane(const rt_object *o, const vec3 *org,
+                                                  const dir3 *d, real tmax, real *t)
+{
+    return plane_intersect(o, *org, *d, tmax, t);
+}
+
+int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
 {
     int best = -1;
     for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
         real hit;
-        if (shapes_intersect(&s->objects[i], org, d, tmax, &hit)) {
+        if (i == skip)
+            continue;
+        if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
+                                 : shapes_plane(o, &org, &d, tmax, &hit)) {
             tmax = hit;
             best = i;
         }
@@ -96,23 +108,19 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return best;
 }
 
+int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    return rt_nearest_but(s, org, d, tmax, -1, t);
+}
+
 int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
 {
     real tmax = R_T_MAX;
     int best = -1;
-    uint32_t skip = 0; /* spheres the bounding sphere's rejection covers */
-    wide kb = s->bound_eye_cull;
-    if (kb > 0) {
-        real tb = v3_dot_d_in(s->bound_eye_l, d);
-        if (tb <= 0 || w_sq(tb) < kb)
-            skip = s->bound_set;
-    }
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
         int h;
-        if (skip & ((uint32_t)1 << i))
-            continue;
         if (o->kind == RT_SPHERE) {
             /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
              * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */

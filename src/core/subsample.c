@@ -74,8 +74,22 @@ typedef struct ss_rgb {
     int32_t c[3];
 } ss_rgb;
 
-/* i / n as a Q16.16 integer, rounded to nearest (r_from_ratio's fixed-point value). */
-static int32_t ss_weight(int i, int n) { return (i * 65536 + n / 2) / n; }
+/* ss_wq[n][i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's fixed-point
+ * value), for squares of up to RT_GRID_MAX pixels: a constant table, no division. */
+#define SS_W(i, n) ((n) > 0 ? ((i)*65536 + (n) / 2) / ((n) > 0 ? (n) : 1) : 0)
+#define SS_ROW(n) \
+    { \
+        SS_W(0, n), SS_W(1, n), SS_W(2, n), SS_W(3, n), SS_W(4, n), SS_W(5, n), SS_W(6, n), \
+            SS_W(7, n), SS_W(8, n), SS_W(9, n), SS_W(10, n), SS_W(11, n), SS_W(12, n), \
+            SS_W(13, n), SS_W(14, n), SS_W(15, n), SS_W(16, n) \
+    }
+#if RT_GRID_MAX != 16
+#error "ss_wq is written out for RT_GRID_MAX 16"
+#endif
+static const int32_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
+    SS_ROW(0),  SS_ROW(1),  SS_ROW(2),  SS_ROW(3),  SS_ROW(4),  SS_ROW(5),
+    SS_ROW(6),  SS_ROW(7),  SS_ROW(8),  SS_ROW(9),  SS_ROW(10), SS_ROW(11),
+    SS_ROW(12), SS_ROW(13), SS_ROW(14), SS_ROW(15), SS_ROW(16)};
 
 static ss_rgb ss_rgb_of(rt_color c)
 {
@@ -151,15 +165,10 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
 void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows, rt_color c00,
                     rt_color c10, rt_color c01, rt_color c11)
 {
-    int32_t wx[RT_GRID_MAX + 1], wy[RT_GRID_MAX + 1];
     if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
         return;
-    for (int i = 1; i <= w; i++)
-        wx[i] = ss_weight(i, w);
-    for (int j = 1; j < h; j++)
-        wy[j] = ss_weight(j, h);
-    ss_fill(dst, stride, w, h, cols, rows, wx, wy, ss_rgb_of(c00), ss_rgb_of(c10), ss_rgb_of(c01),
-            ss_rgb_of(c11));
+    ss_fill(dst, stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_of(c00), ss_rgb_of(c10),
+            ss_rgb_of(c01), ss_rgb_of(c11));
 }
 
 /* One frame's adaptive rendering state. */
@@ -176,7 +185,7 @@ typedef struct ss_ctx {
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
-    int32_t wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n, Q16.16 (ss_weight) */
+    real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
@@ -233,7 +242,7 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
     }
     int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
     uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    ss_fill(dst, c->stride, w, h, cols, rows, c->wt[w], c->wt[h], ss_rgb_of(k[0]->color),
+    ss_fill(dst, c->stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_of(k[0]->color),
             ss_rgb_of(k[1]->color), ss_rgb_of(k[2]->color), ss_rgb_of(k[3]->color));
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
      * lie on the edges this square shares with squares done before it: its top row and left
@@ -282,7 +291,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .lstride = g + 1};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
-            c.wt[n][i] = ss_weight(i, n);
+            c.wt[n][i] = r_from_ratio(i, n);
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */

@@ -27,22 +27,105 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
         sm->nhits++;
 }
 
+/* What one hit point looks like to the lights (trace_light's input). */
+typedef struct trace_hit {
+    vec3 p, p_out; /* the point, and lifted R_EPS_OFFSET off the surface */
+    dir3 n, d;     /* normal facing the ray, and the ray's direction */
+    unit dn;       /* d . n (<= 0) */
+    rt_color base; /* diffuse colour at p */
+    const rt_material *m;
+    int id, inside; /* object hit; 1 when hit from behind */
+} trace_hit;
+
+/* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
+ * unlit, 1 lit, 2 highlight). Out of line: the caller's loop then keeps less in registers. */
+static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i,
+                                                     rt_color *col)
+{
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    const vec3 p = h->p, p_out = h->p_out;
+    const dir3 n = h->n, d = h->d;
+    const unit dn = h->dn;
+    const rt_color base = h->base;
+    const int id = h->id, inside = h->inside;
+    const rt_light *li = &s->lights[i];
+    /* A light behind the surface, or exactly on the point (no direction: it lights the
+     * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
+     * cost of a normalisation. */
+    vec3 to_light = v3_sub(li->pos, p);
+    real dist = 0;
+    dir3 l = {0, 0, 0};
+    if (v3_faces(to_light, n))
+        l = d3_norm(to_light, &dist);
+    unit ndl = d3_dot(n, l);
+    uint8_t state = 0;
+    if (ndl > 0) { /* the light is in front of the surface */
+        /* A convex surface never shadows its own lit side; seen from inside (glass) it
+         * can. Lights nothing can occlude cast no shadow ray at all. */
+        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+        if (!inside && !s->forced)
+            occ &= ~((uint32_t)1 << id);
+        int blocked = 0;
+        if (occ) {
+            /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+             * light, behind a surface that passes closer to the light than that (a light
+             * just above a floor seen from the underside of a ball: a false shadow). For
+             * such lights it is aimed from p_out itself and ends at the light. */
+            real sdist = dist;
+            dir3 sl = l;
+            if (s->near_lights & (1u << i)) {
+                vec3 to_light_out = v3_sub(li->pos, p_out);
+                sdist = 0;
+                if (!v3_is_zero(to_light_out))
+                    sl = d3_norm(to_light_out, &sdist);
+            }
+            /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+             * off the surface: a surface through the light itself (a light in a corner of
+             * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+            c->stats->rays_shadow++;
+            if (sdist > R_EPS_OFFSET)
+                blocked = rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
+        }
+        if (!blocked) {
+            state = 1;
+            *col = c3_madd(*col, c3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
+            if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
+                /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
+                /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
+                 * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
+                 * and eye straight above the point), just outside Q2.30, while every
+                 * partial sum is within [-1, 1] (docs/numerics.md). */
+                unit ndn = u_neg(u_mul(ndl, dn));
+                unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
+                if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
+                    real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
+                    *col = c3_madd(*col, li->color, spec);
+                    if (spec > RT_HIGHLIGHT_MIN)
+                        state = 2;
+                }
+            }
+        }
+    }
+    return state;
+}
+
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel, `travelled`
- * the length of its path from the eye to org. */
+ * the length of its path from the eye to org, `from` the plane it leaves by mirroring (or -1). */
 static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
-                          real travelled)
+                          real travelled, int from)
 {
     const rt_scene *s = c->scene;
     real t;
     int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
-                                           : rt_nearest(s, org, d, R_T_MAX, &t);
+                                           : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
     if (id < 0) {
-        trace_record(c, RT_NO_OBJECT, level, v3_scale(s->background, weight));
+        trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
         return s->background;
     }
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
-    vec3 p = v3_along(org, d, t);
+    vec3 p = v3_along_in(org, d, t);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -52,7 +135,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         inside = 1;
     }
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
+    vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
     /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
@@ -64,71 +147,15 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
-    rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
+    rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
+    trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
     for (int i = 0; i < s->nlights; i++) {
-        const rt_light *li = &s->lights[i];
-        /* A light behind the surface, or exactly on the point (no direction: it lights the
-         * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
-         * cost of a normalisation. */
-        vec3 to_light = v3_sub(li->pos, p);
-        real dist = 0;
-        dir3 l = {0, 0, 0};
-        if (v3_faces(to_light, n))
-            l = d3_norm(to_light, &dist);
-        unit ndl = d3_dot(n, l);
-        uint8_t state = 0;
-        if (ndl > 0) { /* the light is in front of the surface */
-            /* A convex surface never shadows its own lit side; seen from inside (glass) it
-             * can. Lights nothing can occlude cast no shadow ray at all. */
-            uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-            if (!inside && !s->forced)
-                occ &= ~((uint32_t)1 << id);
-            int blocked = 0;
-            if (occ) {
-                /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
-                 * light, behind a surface that passes closer to the light than that (a light
-                 * just above a floor seen from the underside of a ball: a false shadow). For
-                 * such lights it is aimed from p_out itself and ends at the light. */
-                real sdist = dist;
-                dir3 sl = l;
-                if (s->near_lights & (1u << i)) {
-                    vec3 to_light_out = v3_sub(li->pos, p_out);
-                    sdist = 0;
-                    if (!v3_is_zero(to_light_out))
-                        sl = d3_norm(to_light_out, &sdist);
-                }
-                /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
-                 * off the surface: a surface through the light itself (a light in a corner of
-                 * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
-                c->stats->rays_shadow++;
-                if (sdist > R_EPS_OFFSET)
-                    blocked =
-                        rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
-            }
-            if (!blocked) {
-                state = 1;
-                col = v3_madd(col, v3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
-                if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
-                    /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                    /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
-                     * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
-                     * and eye straight above the point), just outside Q2.30, while every
-                     * partial sum is within [-1, 1] (docs/numerics.md). */
-                    unit ndn = u_neg(u_mul(ndl, dn));
-                    unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
-                    if (vr > 0) {
-                        real spec = r_mul(m->specular, u_to_real(u_pow(vr, m->shininess)));
-                        col = v3_madd(col, li->color, spec);
-                        if (spec > RT_HIGHLIGHT_MIN)
-                            state = 2;
-                    }
-                }
-            }
-        }
+        uint8_t state = trace_light(c, &h, i, &col);
         if (level == 0)
             c->sample->light_state[i] = state;
     }
-    trace_record(c, id, level, v3_scale(col, weight));
+    /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
+    trace_record(c, id, level, weight == R_ONE ? col : c3_scale(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within
@@ -141,23 +168,28 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             dir3 rd;
             real eta = inside ? m->ior : m->ior_inv;
             if (d3_refract(d, n, eta, &rd)) {
-                real wt = r_mul(weight, m->transmit);
+                real wt = r_mul_in(weight, m->transmit);
                 if (wt >= c->min_contrib) { /* adaptive recursion control */
                     c->stats->rays_refract++;
-                    vec3 p_in = v3_along(p, n, r_neg(R_EPS_OFFSET));
-                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled);
-                    col = v3_madd(col, tc, m->transmit);
+                    vec3 p_in = v3_along_in(p, n, r_neg(R_EPS_OFFSET));
+                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
+                    col = c3_madd(col, tc, m->transmit);
                 }
             } else {
                 kr = r_add(kr, m->transmit); /* total internal reflection */
             }
         }
-        real wr = r_mul(weight, kr);
+        real wr = r_mul_in(weight, kr);
         if (kr > 0 && wr >= c->min_contrib) {
             c->stats->rays_reflect++;
+            /* Mirrored off a plane's front, it cannot meet the plane again: it starts
+             * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
+             * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
+             * be off by more than that. Every object is tested when effects are forced.) */
+            int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
             rt_color rc =
-                trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, travelled);
-            col = v3_madd(col, rc, kr);
+                trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, travelled, self);
+            col = c3_madd(col, rc, kr);
         }
     }
     return col;
@@ -176,5 +208,5 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
         out->light_state[i] = 0;
     stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, 0);
+    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, 0, -1);
 }
