@@ -70,7 +70,8 @@ static void app_usage(FILE *f)
         "  --progress          a progress line on standard error (default with --frames when\n"
         "                      standard error is a terminal)\n"
         "  --depth N           recursion limit 0..%d (default: the scene's)\n"
-        "  --mode M            full (trace every pixel) or adaptive (default)\n"
+        "  --mode M            full (trace every pixel), adaptive (default) or probe\n"
+        "                      (adaptive, new points probed first, docs/probe.md)\n"
         "  --grid N            adaptive: square size 2, 4, 8 or 16 (default %d)\n"
         "  --threshold X       adaptive: split squares whose corners' colour contributions\n"
         "                      differ by more than X, 0..1 (default 0.0625; 1 = never)\n"
@@ -315,7 +316,7 @@ static int app_parse_render(int argc, char **argv, app_opts *o)
 /* Counters of rt_stats summed over the frames of a run (64 bits: many frames, large ones). */
 typedef struct app_sums {
     unsigned long long rays[4], shadow_tests, noise_octaves, squares[RT_GRID_LEVELS],
-        split[RT_GRID_LEVELS], split_by[5];
+        split[RT_GRID_LEVELS], split_by[5], probes[3];
 } app_sums;
 
 static void app_add(app_sums *t, const rt_stats *s)
@@ -332,6 +333,9 @@ static void app_add(app_sums *t, const rt_stats *s)
     }
     for (int r = 0; r < 5; r++)
         t->split_by[r] += s->split_by[r];
+    t->probes[0] += s->probes;
+    t->probes[1] += s->probe_shadow;
+    t->probes[2] += s->probe_secondary;
 }
 
 /* 64-bit FNV-1a of the frame's RGB bytes, row by row: the bytes of a PPM file's raster. */
@@ -367,8 +371,8 @@ static void app_print_stats(const app_opts *o, const char *scene_name, const rt_
     printf("%s\n", scene->effects ? "" : "none");
     printf("reach_depth=%d\n",
            params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
-    printf("mode=%s\n", o->k.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
-    if (o->k.mode == RT_MODE_ADAPTIVE)
+    printf("mode=%s\n", rt_mode_name(o->k.mode));
+    if (o->k.mode != RT_MODE_FULL)
         printf("grid=%d\nthreshold=%ld.%04ld\n", o->k.grid, (long)o->k.threshold / KNOBS_SCALE,
                (long)o->k.threshold % KNOBS_SCALE);
     printf("min_contrib=%ld.%04ld\n", (long)o->k.min_contrib / KNOBS_SCALE,
@@ -385,7 +389,10 @@ static void app_print_stats(const app_opts *o, const char *scene_name, const rt_
            t->rays[0], t->rays[1], t->rays[2], t->rays[3]);
     printf("shadow_tests=%llu\n", t->shadow_tests);
     printf("noise_octaves=%llu\n", t->noise_octaves);
-    if (o->k.mode == RT_MODE_ADAPTIVE) {
+    if (o->k.mode == RT_MODE_PROBE)
+        printf("probes=%llu\nprobe_rays_shadow=%llu\nprobe_rays_secondary=%llu\n", t->probes[0],
+               t->probes[1], t->probes[2]);
+    if (o->k.mode != RT_MODE_FULL) {
         for (int l = 0, size = o->k.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
             printf("squares_%d=%llu\nsplit_%d=%llu\n", size, t->squares[l], size, t->split[l]);
         printf("split_object=%llu\nsplit_light=%llu\nsplit_secondary=%llu\nsplit_contrib=%llu\n",

@@ -63,7 +63,8 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++)
             if (traced[(long)y * width + x])
-                pixels[(long)y * stride + x] = 0xFFFFFF;
+                pixels[(long)y * stride + x] =
+                    traced[(long)y * width + x] == 1 ? 0xFFFFFFu : FRAME_PROBE_COLOR;
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,
@@ -101,5 +102,8 @@ void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, cons
         }
         for (int r = 0; r < 5; r++)
             stats->split_by[r] += t->split_by[r];
+        stats->probes += t->probes;
+        stats->probe_shadow += t->probe_shadow;
+        stats->probe_secondary += t->probe_secondary;
     }
 }

@@ -1,4 +1,4 @@
-/* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest. */
+/* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest (probe mode: probe the points a split adds first, probe.c). */
 #include <string.h>
 
 #include "rt.h"
@@ -20,7 +20,7 @@ static int ss_corner(int i, int g, int n)
 
 unsigned long rt_render_work_size(const rt_params *p, int width)
 {
-    if (p->mode != RT_MODE_ADAPTIVE)
+    if (p->mode == RT_MODE_FULL)
         return 0;
     unsigned long row = (unsigned long)ss_count(width, p->grid) + 1;
     unsigned long side = (unsigned long)p->grid + 1;
@@ -29,7 +29,7 @@ unsigned long rt_render_work_size(const rt_params *p, int width)
 
 int rt_render_band_count(const rt_params *p, int height)
 {
-    return p->mode == RT_MODE_ADAPTIVE ? ss_count(height, p->grid) : height;
+    return p->mode != RT_MODE_FULL ? ss_count(height, p->grid) : height;
 }
 
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
@@ -130,6 +130,7 @@ typedef struct ss_ctx {
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
 {
     rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
+    out->probed = 0;
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
@@ -146,6 +147,44 @@ static const rt_sample *ss_at(ss_ctx *c, int x, int y)
     if (sm->nhits == 0)
         ss_trace(c, x, y, sm);
     return sm;
+}
+
+/* Probe mode: the point (x, y) a split adds, with its context k (rt_probe_point); probed, and
+ * shaded in full only when rt_probe_point cannot give its colour. A point some square added
+ * before is kept: it got its record from the same context (the ends of its edge), so the frame
+ * does not depend on the order squares are visited in. */
+static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
+                                                   const rt_sample *const k[], real tx, real ty)
+{
+    rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
+    if (sm->nhits)
+        return;
+    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, sm)) {
+        if (c->traced)
+            __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
+    } else {
+        ss_trace(c, x, y, sm);
+    }
+}
+
+/* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
+ * corners): the middles of the edges it halves, each against the ends of its edge, and the
+ * centre against the four corners. */
+static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
+                                                     int nx, int ny, const rt_sample *const k[4])
+{
+    static const uint8_t ends[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}}; /* top, bottom, l, r */
+    real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
+    for (int e = 0; e < 4; e++) {
+        int across = e < 2; /* the edge runs along x */
+        if ((across ? nx : ny) != 2)
+            continue;
+        const rt_sample *kk[2] = {k[ends[e][0]], k[ends[e][1]]};
+        int x = across ? x0 + w / 2 : x0 + (e & 1) * w, y = across ? y0 + (e & 1) * h : y0 + h / 2;
+        ss_probe_new(c, x, y, 2, kk, across ? tx : ty, 0);
+    }
+    if (nx == 2 && ny == 2)
+        ss_probe_new(c, x0 + w / 2, y0 + h / 2, 4, k, tx, ty);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the
@@ -172,6 +211,8 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
                 ys[1] = y0 + h / 2;
                 ny = 2;
             }
+            if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
+                ss_probe_split(c, x0, y0, w, h, nx, ny, k);
             for (int j = 0; j < ny; j++)
                 for (int i = 0; i < nx; i++)
                     ss_square(c, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j], level + 1,

@@ -9,6 +9,7 @@ typedef struct trace_ctx {
     real min_contrib; /* adaptive recursion control */
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
+    int probe;        /* a visibility probe (rt_probe_pixel): the record's shape, no shading */
 } trace_ctx;
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
@@ -51,14 +52,17 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
+    /* A probe needs the texture only for the primary hit's checker cell, and light states only
+     * at the primary hit; it shades nothing. */
     uint8_t cell = 0;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
-        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
-        : m->diffuse;
+    rt_color base = m->diffuse;
+    if (rt_scene_has(s, RT_FX_TEXTURE) &&
+        (!c->probe || (level == 0 && m->tex.kind == RT_TEX_CHECKER)))
+        base = rt_texture_color(m, p, c->octaves, c->stats, &cell);
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
-    for (int i = 0; i < s->nlights; i++) {
+    for (int i = 0; i < (c->probe && level > 0 ? 0 : s->nlights); i++) {
         const rt_light *li = &s->lights[i];
         /* A light behind the surface, or exactly on the point (no direction: it lights the
          * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
@@ -155,12 +159,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     return col;
 }
 
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out)
+static void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                        rt_stats *stats, rt_sample *out, int probe)
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared};
+    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared, probe};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
@@ -168,4 +172,16 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
     stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0);
+}
+
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    rt_stats *stats, rt_sample *out)
+{
+    trace_point(s, v, p, x, y, stats, out, 0);
+}
+
+void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    rt_stats *stats, rt_sample *out)
+{
+    trace_point(s, v, p, x, y, stats, out, 1);
 }
