@@ -266,7 +266,7 @@ $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
 # The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o): ARM_COLD_OPT := -Os
+$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/probe.o): ARM_COLD_OPT := -Os
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog

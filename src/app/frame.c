@@ -64,7 +64,8 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
         for (int x = 0; x < width; x++)
             if (traced[(long)y * width + x])
                 pixels[(long)y * stride + x] =
-                    traced[(long)y * width + x] == 1 ? 0xFFFFFFu : FRAME_PROBE_COLOR;
+                    !RT_COMPILED_PROBE || traced[(long)y * width + x] == 1 ? 0xFFFFFFu
+                                                                           : FRAME_PROBE_COLOR;
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,

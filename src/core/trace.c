@@ -10,7 +10,12 @@ typedef struct trace_ctx {
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
     int probe;        /* a visibility probe (rt_probe_pixel): the record's shape, no shading */
+    unsigned probe_lights; /* probe: the lights whose state at the primary hit is wanted */
+    int probe_deep;        /* probe: follow the secondary rays too */
 } trace_ctx;
+
+/* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
+#define TRACE_PROBE(c) (RT_COMPILED_PROBE && (c)->probe)
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
 {
@@ -52,17 +57,19 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
-    /* A probe needs the texture only for the primary hit's checker cell, and light states only
-     * at the primary hit; it shades nothing. */
+    /* A probe takes the texture only for the primary hit's checker cell, and only the light
+     * states asked for, at the primary hit. */
     uint8_t cell = 0;
     rt_color base = m->diffuse;
     if (rt_scene_has(s, RT_FX_TEXTURE) &&
-        (!c->probe || (level == 0 && m->tex.kind == RT_TEX_CHECKER)))
+        (!TRACE_PROBE(c) || (level == 0 && m->tex.kind == RT_TEX_CHECKER)))
         base = rt_texture_color(m, p, c->octaves, c->stats, &cell);
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
-    for (int i = 0; i < (c->probe && level > 0 ? 0 : s->nlights); i++) {
+    for (int i = 0; i < s->nlights; i++) {
+        if (TRACE_PROBE(c) && (level > 0 || !(c->probe_lights & (1u << i))))
+            continue;
         const rt_light *li = &s->lights[i];
         /* A light behind the surface, or exactly on the point (no direction: it lights the
          * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
@@ -132,7 +139,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
      * what it mirrors is below a pixel. */
-    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
+    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX) &&
+        (!TRACE_PROBE(c) || c->probe_deep)) {
         real kr = m->reflect;
         if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
             dir3 rd;
@@ -159,12 +167,19 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     return col;
 }
 
-static void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                        rt_stats *stats, rt_sample *out, int probe)
+/* Shared by rt_trace_pixel and rt_probe_pixel; without probe mode (RT_COMPILED_PROBE) inlined
+ * into rt_trace_pixel, its only caller. */
+#if RT_COMPILED_PROBE
+#define TRACE_POINT static
+#else
+#define TRACE_POINT static inline __attribute__((always_inline))
+#endif
+TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                             rt_stats *stats, rt_sample *out, int probe, unsigned lights, int deep)
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared, probe};
+    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared, probe, lights, deep};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
@@ -177,11 +192,13 @@ static void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p,
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 0);
+    trace_point(s, v, p, x, y, stats, out, 0, 0, 0);
 }
 
+#if RT_COMPILED_PROBE
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out)
+                    unsigned lights, int deep, rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 1);
+    trace_point(s, v, p, x, y, stats, out, 1, lights, deep);
 }
+#endif
