@@ -264,13 +264,13 @@ dir3 rt_view_ray(const rt_view *v, int x, int y);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
-/* A visibility probe of pixel (x, y): fills part of the shape of *out as rt_trace_pixel would,
- * at a fraction of the cost: the primary object and its checker cell, the state of each light
- * in `lights` (bit i: light i; the others are left 0), and when `deep` the objects and levels of
- * the whole ray tree (nearest hits only), else nhits = 1. No texture colour, noise or shading:
- * out->color and the nodes' contrib are left meaningless. Counts its rays in *stats. */
+/* A visibility probe of pixel (x, y): fills the shape of *out as rt_trace_pixel would (nhits,
+ * each stored node's object and level, the primary hit's checker cell and light states) at a
+ * fraction of the cost: nearest hits along the same ray tree, shadow rays at the primary hit
+ * only, no texture colour, noise or shading. out->color and the nodes' contrib are left
+ * meaningless. Counts its rays in *stats as rt_trace_pixel does. */
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    unsigned lights, int deep, rt_stats *stats, rt_sample *out);
+                    rt_stats *stats, rt_sample *out);
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
@@ -312,21 +312,22 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
                         int nbands);
 
-/* Probe mode (probe.c), for a point (x, y) that splitting a square adds: probes it and
- * compares its record with its n context samples k[]: the ends of the edge it lies on (n = 2,
- * the point at fraction tx from k[0] to k[1]) or the corners of the square it is the centre of
- * (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty)). Returns 1 when the point's
- * colour can be reconstructed: two or more context samples have its record (rt_probe_same),
- * that record has no secondary rays and is on no noise texture, and those samples'
- * contributions agree within thr8 (1/255 steps); *out then gets the probe's record, the colour
+/* Probe mode (probe.c), for a point (x, y) that splitting a square adds: probes it
+ * (rt_probe_pixel) and compares its record with its n context samples k[]: the ends of the
+ * edge it lies on (n = 2, the point at fraction tx from k[0] to k[1]) or the corners of the
+ * square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty));
+ * `span` is the context's size in pixels (the edge's length, the square's larger side).
+ * Returns 1 when the point's colour can be reconstructed: two or more context samples have
+ * its record (rt_probe_same), or one and span <= RT_PROBE_ONE_SPAN; the record is on no noise
+ * texture, meets no texture beyond the primary hit, has no highlight; and those samples'
+ * contributions agree within thr8 (1/255 steps). *out then gets the probe's record, the colour
  * interpolated from those samples alone (along x within each row of the context, then between
- * the rows; a row with one matching sample gives its colour), the contributions of the first of them and
- * probed = 1. Returns 0 when the point must be shaded in full (*out is then scratch). The
- * probe is lazy: the primary hit first, then only the lights and the ray tree on which the
- * matching samples disagree (what they agree on is taken as the point's). Counts probes and
- * their rays in st->probes, probe_shadow and probe_secondary. */
+ * the rows; a row with one matching sample gives its colour), the contributions of the first
+ * of them and probed = 1. Returns 0 when the point must be shaded in full (*out is then
+ * scratch). Counts probes and their rays in st->probes, probe_shadow and probe_secondary. */
+#define RT_PROBE_ONE_SPAN 4
 int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
-                   int x, int y, int n, const rt_sample *const k[], real tx, real ty,
+                   int x, int y, int n, const rt_sample *const k[], real tx, real ty, int span,
                    rt_sample *out);
 
 /* Do two records have the same shape: primary object and cell, light states, and the objects

@@ -154,12 +154,14 @@ static const rt_sample *ss_at(ss_ctx *c, int x, int y)
  * before is kept: it got its record from the same context (the ends of its edge), so the frame
  * does not depend on the order squares are visited in. */
 static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
-                                                   const rt_sample *const k[], real tx, real ty)
+                                                   const rt_sample *const k[], real tx, real ty,
+                                                   int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
     if (sm->nhits)
         return;
-    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, sm)) {
+    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, span,
+                       sm)) {
         if (c->traced)
             __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
     } else {
@@ -181,10 +183,10 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
             continue;
         const rt_sample *kk[2] = {k[ends[e][0]], k[ends[e][1]]};
         int x = across ? x0 + w / 2 : x0 + (e & 1) * w, y = across ? y0 + (e & 1) * h : y0 + h / 2;
-        ss_probe_new(c, x, y, 2, kk, across ? tx : ty, 0);
+        ss_probe_new(c, x, y, 2, kk, across ? tx : ty, 0, across ? w : h);
     }
     if (nx == 2 && ny == 2)
-        ss_probe_new(c, x0 + w / 2, y0 + h / 2, 4, k, tx, ty);
+        ss_probe_new(c, x0 + w / 2, y0 + h / 2, 4, k, tx, ty, w > h ? w : h);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the

@@ -10,8 +10,6 @@ typedef struct trace_ctx {
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
     int probe;        /* a visibility probe (rt_probe_pixel): the record's shape, no shading */
-    unsigned probe_lights; /* probe: the lights whose state at the primary hit is wanted */
-    int probe_deep;        /* probe: follow the secondary rays too */
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -57,8 +55,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
-    /* A probe takes the texture only for the primary hit's checker cell, and only the light
-     * states asked for, at the primary hit. */
+    /* A probe takes the texture only for the primary hit's checker cell, and light states only
+     * at the primary hit. */
     uint8_t cell = 0;
     rt_color base = m->diffuse;
     if (rt_scene_has(s, RT_FX_TEXTURE) &&
@@ -68,8 +66,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
     for (int i = 0; i < s->nlights; i++) {
-        if (TRACE_PROBE(c) && (level > 0 || !(c->probe_lights & (1u << i))))
-            continue;
+        if (TRACE_PROBE(c) && level > 0)
+            break;
         const rt_light *li = &s->lights[i];
         /* A light behind the surface, or exactly on the point (no direction: it lights the
          * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
@@ -139,8 +137,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
      * what it mirrors is below a pixel. */
-    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX) &&
-        (!TRACE_PROBE(c) || c->probe_deep)) {
+    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
         real kr = m->reflect;
         if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
             dir3 rd;
@@ -175,11 +172,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 #define TRACE_POINT static inline __attribute__((always_inline))
 #endif
 TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                             rt_stats *stats, rt_sample *out, int probe, unsigned lights, int deep)
+                             rt_stats *stats, rt_sample *out, int probe)
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared, probe, lights, deep};
+    trace_ctx c = {s, stats, out, p->min_contrib, p->octaves, eye_prepared, probe};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
@@ -192,13 +189,13 @@ TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_param
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 0, 0, 0);
+    trace_point(s, v, p, x, y, stats, out, 0);
 }
 
 #if RT_COMPILED_PROBE
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    unsigned lights, int deep, rt_stats *stats, rt_sample *out)
+                    rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 1, lights, deep);
+    trace_point(s, v, p, x, y, stats, out, 1);
 }
 #endif
