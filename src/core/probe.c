@@ -76,29 +76,91 @@ static int probe_unseen(const rt_scene *s, const rt_sample *r)
     return 0;
 }
 
+/* Bit i set for each context sample k[i] of the set `in` whose record is r's. */
+static unsigned probe_matches(int n, const rt_sample *const k[], unsigned in, const rt_sample *r)
+{
+    unsigned m = 0;
+    for (int i = 0; i < n; i++)
+        if ((in & (1u << i)) && rt_probe_same(r, k[i]))
+            m |= 1u << i;
+    return m;
+}
+
+/* The lowest bit set in a non-empty set. */
+static int probe_first(unsigned set)
+{
+    int i = 0;
+    while (!(set & (1u << i)))
+        i++;
+    return i;
+}
+
+/* Is the primary hit of r on a noise texture (which varies between any two points)? */
+static int probe_noise(const rt_scene *s, const rt_sample *r)
+{
+    int id = r->hits[0].object;
+    return id != RT_NO_OBJECT && rt_scene_has(s, RT_FX_NOISE) &&
+        s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
+}
+
+/* Adds a probe's rays to st. */
+static void probe_count(rt_stats *st, const rt_stats *ps)
+{
+    st->probe_shadow += ps->rays_shadow;
+    st->probe_secondary += ps->rays_reflect + ps->rays_refract;
+    st->shadow_tests += ps->shadow_tests;
+}
+
 int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
                    int x, int y, int n, const rt_sample *const k[], real tx, real ty, int span,
                    rt_sample *out)
 {
-    rt_stats ps = {0};
-    rt_probe_pixel(s, v, p, x, y, &ps, out);
-    st->probes++;
-    st->probe_shadow += ps.rays_shadow;
-    st->probe_secondary += ps.rays_reflect + ps.rays_refract;
-    st->shadow_tests += ps.shadow_tests;
+    /* 0. No probe where its answer cannot matter: a point whose record is a context sample's
+     * gets that sample's verdict, one with a new record is shaded. So when every context sample
+     * is on noise or probe_unseen, or all have one record whose contributions disagree, shade. */
+    unsigned never = 0, same = 0;
+    for (int i = 0; i < n; i++) {
+        never += probe_noise(s, k[i]) || probe_unseen(s, k[i]);
+        same += rt_probe_same(k[0], k[i]);
+    }
+    if (never == (unsigned)n || (same == (unsigned)n && !probe_agree(n, k, (1u << n) - 1, thr8)))
+        return 0;
 
-    /* The context samples on the probe's side of every edge. */
+    /* 1. The primary hit and its checker cell; a noise texture there ends the probe. */
+    rt_sample pr;
+    rt_stats ps = {0};
+    st->probes++;
+    rt_probe_pixel(s, v, p, x, y, 0, &ps, &pr);
+    probe_count(st, &ps);
+    if (probe_noise(s, &pr))
+        return 0;
+    int id = pr.hits[0].object;
     unsigned m = 0;
     for (int i = n - 1; i >= 0; i--)
-        m = m << 1 | (rt_probe_same(out, k[i]) ? 1u : 0);
-    /* Interpolation stands in where two samples or more have the point's record, or one next to
-     * it (at most RT_PROBE_ONE_SPAN pixels across the context); on no noise texture (it varies
-     * between any two points); where the colour depends on nothing the record misses
-     * (probe_unseen); and where those samples' contributions agree. */
-    int id = out->hits[0].object;
+        m = m << 1 | (k[i]->hits[0].object == id && k[i]->cell == pr.cell ? 1u : 0);
+    if (!m)
+        return 0; /* something new */
+
+    /* 2. The whole record (every light's state, the ray tree) where the context disagrees on
+     * a light (a shadow or highlight edge crosses it) or the surface casts secondary rays (what
+     * they meet can change anywhere); elsewhere the matching sample's record is the point's. */
+    const rt_sample *f = k[probe_first(m)];
+    int deep = f->nhits > 1;
+    for (int i = 0; i < n; i++)
+        deep |= memcmp(k[i]->light_state, f->light_state, sizeof f->light_state) != 0;
+    *out = *f;
+    if (deep) {
+        rt_stats ps2 = {0};
+        rt_probe_pixel(s, v, p, x, y, 1, &ps2, out);
+        probe_count(st, &ps2);
+        m = probe_matches(n, k, m, out);
+    }
+
+    /* 3. Interpolation stands in where two samples or more have the point's record, or one
+     * next to it (at most RT_PROBE_ONE_SPAN pixels across the context); where the colour
+     * depends on nothing the record misses (probe_unseen); and where those samples'
+     * contributions agree. */
     if (!m || (!(m & (m - 1)) && span > RT_PROBE_ONE_SPAN) || probe_unseen(s, out) ||
-        (id != RT_NO_OBJECT && rt_scene_has(s, RT_FX_NOISE) &&
-         s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER) ||
         !probe_agree(n, k, m, thr8))
         return 0;
 
@@ -108,11 +170,9 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
     if (n == 4)
         col = probe_mix(col, probe_mix(k[2]->color, k[3]->color, bot, tx),
                         (top ? 1u : 0) | (bot ? 2u : 0), ty);
-    int first = 0;
-    while (!(m & (1u << first)))
-        first++;
+    f = k[probe_first(m)];
     for (int j = 0; j < RT_SAMPLE_MAX_HITS; j++)
-        memcpy(out->hits[j].contrib, k[first]->hits[j].contrib, sizeof out->hits[j].contrib);
+        memcpy(out->hits[j].contrib, f->hits[j].contrib, sizeof out->hits[j].contrib);
     out->color = col;
     out->probed = 1;
     return 1;

@@ -264,13 +264,14 @@ dir3 rt_view_ray(const rt_view *v, int x, int y);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
-/* A visibility probe of pixel (x, y): fills the shape of *out as rt_trace_pixel would (nhits,
- * each stored node's object and level, the primary hit's checker cell and light states) at a
- * fraction of the cost: nearest hits along the same ray tree, shadow rays at the primary hit
- * only, no texture colour, noise or shading. out->color and the nodes' contrib are left
- * meaningless. Counts its rays in *stats as rt_trace_pixel does. */
+/* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
+ * its cost. With `whole`: nhits, each stored node's object and level, the primary hit's checker
+ * cell and light states (nearest hits along the same ray tree, shadow rays at the primary hit
+ * only); without: the primary object and its cell alone (nhits = 1, light states 0), one ray.
+ * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
+ * Counts its rays in *stats as rt_trace_pixel does. */
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out);
+                    int whole, rt_stats *stats, rt_sample *out);
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);

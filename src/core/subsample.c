@@ -175,18 +175,16 @@ static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int 
 static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
                                                      int nx, int ny, const rt_sample *const k[4])
 {
-    static const uint8_t ends[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}}; /* top, bottom, l, r */
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
-    for (int e = 0; e < 4; e++) {
-        int across = e < 2; /* the edge runs along x */
-        if ((across ? nx : ny) != 2)
-            continue;
-        const rt_sample *kk[2] = {k[ends[e][0]], k[ends[e][1]]};
-        int x = across ? x0 + w / 2 : x0 + (e & 1) * w, y = across ? y0 + (e & 1) * h : y0 + h / 2;
-        ss_probe_new(c, x, y, 2, kk, across ? tx : ty, 0, across ? w : h);
+    int xm = x0 + w / 2, ym = y0 + h / 2;
+    for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
+        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, tx, 0, w);
+    for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
+        const rt_sample *kk[2] = {k[i], k[i + 2]};
+        ss_probe_new(c, x0 + i * w, ym, 2, kk, ty, 0, h);
     }
     if (nx == 2 && ny == 2)
-        ss_probe_new(c, x0 + w / 2, y0 + h / 2, 4, k, tx, ty, w > h ? w : h);
+        ss_probe_new(c, xm, ym, 4, k, tx, ty, w > h ? w : h);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the

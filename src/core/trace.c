@@ -9,7 +9,7 @@ typedef struct trace_ctx {
     real min_contrib; /* adaptive recursion control */
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
-    int probe;        /* a visibility probe (rt_probe_pixel): the record's shape, no shading */
+    int probe; /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record */
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -44,6 +44,15 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
     vec3 p = v3_along(org, d, t);
+    if (TRACE_PROBE(c) && c->probe == 1) {
+        /* The primary hit alone: its object and checker cell. */
+        uint8_t cell = 0;
+        if (rt_scene_has(s, RT_FX_TEXTURE) && m->tex.kind == RT_TEX_CHECKER)
+            rt_texture_color(m, p, 0, c->stats, &cell);
+        c->sample->cell = cell;
+        trace_record(c, id, level, s->background);
+        return s->background;
+    }
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -194,8 +203,8 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
 
 #if RT_COMPILED_PROBE
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out)
+                    int whole, rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 1);
+    trace_point(s, v, p, x, y, stats, out, whole ? 2 : 1);
 }
 #endif
