@@ -71,7 +71,7 @@ fi
 # byte for byte those of the host's rt-fixed with the same settings, other pictures than the
 # default's, and other instruction counts.
 SET_FRAMES=(425 875)
-for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2"; do
+for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2" "--mode probe"; do
   tag=$(tr -c 'a-z0-9\n' _ <<<"$S")
   # shellcheck disable=SC2086  # settings are words on purpose
   if platform/arm/qemu.sh frames fixed $S "${SET_FRAMES[@]}" >"$T/set-$tag.log" 2>&1; then
