@@ -153,6 +153,7 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
         rt_stats ps2 = {0};
         rt_probe_pixel(s, v, p, x, y, 1, &ps2, out);
         probe_count(st, &ps2);
+        out->cell = pr.cell;
         m = probe_matches(n, k, m, out);
     }
 

@@ -265,9 +265,9 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
                     rt_stats *stats, rt_sample *out);
 
 /* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
- * its cost. With `whole`: nhits, each stored node's object and level, the primary hit's checker
- * cell and light states (nearest hits along the same ray tree, shadow rays at the primary hit
- * only); without: the primary object and its cell alone (nhits = 1, light states 0), one ray.
+ * its cost. With `whole`: nhits, each stored node's object and level and the primary hit's
+ * light states (nearest hits along the same ray tree, shadow rays at the primary hit only; cell
+ * 0); without: the primary object and its checker cell alone (nhits = 1, light states 0).
  * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
  * Counts its rays in *stats as rt_trace_pixel does. */
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,

@@ -30,6 +30,23 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
         sm->nhits++;
 }
 
+#if RT_COMPILED_PROBE
+/* A probe of the primary hit alone (rt_probe_pixel without `whole`): p on object id of
+ * material m; records the object and its checker cell. Out of line, off the shading path. */
+static __attribute__((noinline)) rt_color trace_probe_hit(trace_ctx *c, const rt_material *m,
+                                                          vec3 p, int id)
+{
+    uint8_t cell = 0;
+    if (rt_scene_has(c->scene, RT_FX_TEXTURE) && m->tex.kind == RT_TEX_CHECKER)
+        rt_texture_color(m, p, 0, c->stats, &cell);
+    c->sample->cell = cell;
+    trace_record(c, id, 0, c->scene->background);
+    return c->scene->background;
+}
+#else
+#define trace_probe_hit(c, m, p, id) ((c)->scene->background)
+#endif
+
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel. */
 static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level)
 {
@@ -44,15 +61,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
     vec3 p = v3_along(org, d, t);
-    if (TRACE_PROBE(c) && c->probe == 1) {
-        /* The primary hit alone: its object and checker cell. */
-        uint8_t cell = 0;
-        if (rt_scene_has(s, RT_FX_TEXTURE) && m->tex.kind == RT_TEX_CHECKER)
-            rt_texture_color(m, p, 0, c->stats, &cell);
-        c->sample->cell = cell;
-        trace_record(c, id, level, s->background);
-        return s->background;
-    }
+    if (TRACE_PROBE(c) && c->probe == 1)
+        return trace_probe_hit(c, m, p, id);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -64,19 +74,17 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along(p, n, R_EPS_OFFSET);
 
-    /* A probe takes the texture only for the primary hit's checker cell, and light states only
-     * at the primary hit. */
+    /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
+     * primary hit. */
     uint8_t cell = 0;
-    rt_color base = m->diffuse;
-    if (rt_scene_has(s, RT_FX_TEXTURE) &&
-        (!TRACE_PROBE(c) || (level == 0 && m->tex.kind == RT_TEX_CHECKER)))
-        base = rt_texture_color(m, p, c->octaves, c->stats, &cell);
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c)
+        ? rt_texture_color(m, p, c->octaves, c->stats, &cell)
+        : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = v3_scale(v3_mul(base, s->ambient), m->ambient);
-    for (int i = 0; i < s->nlights; i++) {
-        if (TRACE_PROBE(c) && level > 0)
-            break;
+    int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
+    for (int i = 0; i < nlights; i++) {
         const rt_light *li = &s->lights[i];
         /* A light behind the surface, or exactly on the point (no direction: it lights the
          * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
