@@ -70,7 +70,7 @@ FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 # the boards included, runs: the timeline and the render settings (src/scene/). The same
 # sources in every variant.
 TRACER_SRCS := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c \
-               src/core/render.c src/core/subsample.c src/core/noise.c src/core/texture.c
+               src/core/render.c src/core/subsample.c src/core/probe.c src/core/noise.c src/core/texture.c
 SCENE_SRCS := src/scene/scn.c src/scene/knobs.c
 CORE_SRCS := $(TRACER_SRCS) $(SCENE_SRCS)
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
@@ -213,12 +213,12 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # ---- the intro players (build/intro-fixed, build/intro-float): the original's 64 kB limit -----
 # The intro in a window and nothing else (src/app/player.c over play.c). Built for size: unused
 # functions dropped, no unwind tables, the hot tracer at -O2 and the rest at -Os.
-PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/subsample.c src/core/noise.c src/core/texture.c
+PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/subsample.c src/core/probe.c src/core/noise.c src/core/texture.c
 PLAYER_COLD := src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
-                 -fno-unwind-tables -fno-stack-protector
+                 -fno-unwind-tables -fno-stack-protector -DRT_COMPILED_PROBE=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
@@ -291,7 +291,7 @@ $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
 # The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o): ARM_COLD_OPT := -Os
+$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o $(BUILD)/obj/arm-$(r)/src/core/probe.o): ARM_COLD_OPT := -Os
 
 # The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.
 PROFILE_PLUGIN := $(BUILD)/arm/qemu_profile.so

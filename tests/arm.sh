@@ -92,7 +92,7 @@ fi
 # default's, and other instruction counts.
 SET_FRAMES=(425 875)
 for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode=full --octaves=2" \
-  "--footprint off"; do
+  "--footprint off" "--mode probe"; do
   tag=$(tr -c 'a-z0-9\n' _ <<<"$S")
   # shellcheck disable=SC2086  # settings are words on purpose
   if platform/arm/qemu.sh frames fixed $S "${SET_FRAMES[@]}" >"$T/set-$tag.log" 2>&1; then

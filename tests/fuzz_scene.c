@@ -49,7 +49,9 @@ static void fz_render(uint64_t h)
     rt_params p = {
         .depth = (h & 1) ? fz_scene.depth : (int)((h >> 1) % (RT_MAX_DEPTH + 1)),
         .min_contrib = (h & 16) ? 0 : d.min_contrib,
-        .mode = (h & 32) ? RT_MODE_FULL : RT_MODE_ADAPTIVE,
+        .mode = (h & 32)      ? RT_MODE_FULL
+            : ((h >> 13) & 1) ? RT_MODE_PROBE
+                              : RT_MODE_ADAPTIVE,
         .grid = grids[(h >> 6) & 3],
         .threshold = (h & 256) ? 0 : d.threshold,
         .octaves = (int)((h >> 40) % (RT_NOISE_MAX_OCTAVES + 1)), /* 0: the scene's */

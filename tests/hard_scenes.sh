@@ -11,7 +11,9 @@
 #   stat:KEY>=N, stat:KEY=V   assertions on the fixed build's --stats
 # and every case also requires, in both sanitized builds: exit 0, no ASan/UBSan report,
 # fx_overflow=0, fx_domain=0, fx_nonfinite=0 (no saturation, no domain error, no NaN or
-# infinity), and the same bytes as the -O2 build. Prints 'ok'/'FAIL' lines; exits 1 on a failure.
+# infinity), and the same bytes as the -O2 build; the same again in probe mode (--mode probe:
+# clean, the same bytes as the -O2 build's probe frame). Prints 'ok'/'FAIL' lines; exits 1 on
+# a failure.
 set -u
 cd "$(dirname "$0")/.."
 B=build
@@ -72,6 +74,21 @@ for scene in "${scenes[@]}"; do
         done
       fi
     done
+    # Probe mode on the same case: clean under the sanitizers, the -O2 build's bytes.
+    for real in fixed float; do
+      out=$($B/san-$real/rt render --scene "$scene" --time "$time" --size "$size" $opts --mode probe --stats \
+            -o "$base-san-$real-probe.ppm" 2>"$base-san-$real-probe.err")
+      rc=$?
+      [ $rc -eq 0 ] || bad="$bad probe: san-$real exit $rc;"
+      grep -q 'runtime error\|Sanitizer' "$base-san-$real-probe.err" && bad="$bad probe: san-$real: $(grep -m1 'runtime error\|Sanitizer' "$base-san-$real-probe.err");"
+      for ev in fx_overflow fx_domain fx_nonfinite; do
+        v=$(sed -n "s/^$ev=//p" <<<"$out")
+        [ "$v" = 0 ] || bad="$bad probe: san-$real $ev=$v;"
+      done
+      $B/rt-$real render --scene "$scene" --time "$time" --size "$size" $opts --mode probe -o "$base-$real-probe.ppm" 2>/dev/null ||
+        bad="$bad probe: rt-$real failed;"
+      cmp -s "$base-$real-probe.ppm" "$base-san-$real-probe.ppm" || bad="$bad probe: rt-$real and san-$real differ;"
+    done
     cmpline=$($B/rt-cmp "$base-fixed.ppm" "$base-float.ppm" --diff "$base-diff.png" 2>&1)
     p=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$cmpline")
     o=$(sed -n 's/.*over8=\([0-9]*\).*/\1/p' <<<"$cmpline")
@@ -82,7 +99,7 @@ for scene in "${scenes[@]}"; do
     fi
     what="hard $name t=${time}s $size:"
     if [ -z "$bad" ]; then
-      echo "ok   $what no overflow/domain/NaN event in either build,$([ $sameall != 0 ] && echo " effects all = auto ($([ $sameall = 1 ] && echo both builds || echo $sameall)),")$info fixed vs float $cmpline (bound >= $psnr dB, over8 <= $over8 per mille)"
+      echo "ok   $what no overflow/domain/NaN event in either build (full and probe mode),$([ $sameall != 0 ] && echo " effects all = auto ($([ $sameall = 1 ] && echo both builds || echo $sameall)),")$info fixed vs float $cmpline (bound >= $psnr dB, over8 <= $over8 per mille)"
     else
       echo "FAIL $what$bad"
       status=1

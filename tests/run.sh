@@ -201,6 +201,68 @@ if [ -n "$changed" ] && [ "$changed" -le "$samples" ] && [ $((changed * 10)) -ge
 else
   fail "--show-samples changed '$changed' pixels for $samples traced points"
 fi
+
+# ---- probe mode (--mode probe, docs/probe.md) -------------------------------------------------------
+# --stats: probes= beside samples_traced= (points shaded in full); --show-samples: shaded points
+# white, probed ones magenta, one mark per point.
+stats=$($B/rt-fixed render $DEMO --mode probe --threads 1 --size 320x240 --time 3 --stats -o "$T/probe.ppm" 2>/dev/null)
+shaded=$(sed -n 's/^samples_traced=//p' <<<"$stats")
+probes=$(sed -n 's/^probes=//p' <<<"$stats")
+$B/rt-fixed render $DEMO --mode probe --size 320x240 --time 3 --show-samples -o "$T/probe-dots.ppm" 2>/dev/null
+marks=$(python3 - "$T/probe-dots.ppm" <<'PY'
+import sys
+d = open(sys.argv[1], 'rb').read().split(b'\n', 3)[3]
+px = [d[i:i + 3] for i in range(0, len(d), 3)]
+print(px.count(b'\xff\xff\xff'), px.count(b'\xff\x00\xff'))
+PY
+)
+read -r white magenta <<<"$marks"
+if grep -q '^mode=probe$' <<<"$stats" && [ -n "$shaded" ] && [ -n "$probes" ] && [ "$probes" -gt 0 ] &&
+   [ "$shaded" -lt "$samples" ] && [ "${white:-0}" -le "$shaded" ] && [ $((white * 10)) -ge $((shaded * 9)) ] &&
+   [ "${magenta:-0}" -gt 0 ] && [ "$magenta" -le "$probes" ]; then
+  pass "--mode probe --stats: $shaded points shaded in full (adaptive $samples), $probes probes; --show-samples: $white white, $magenta magenta"
+else
+  fail "--mode probe: shaded '$shaded' (adaptive $samples), probes '$probes', marks white '$white' magenta '$magenta'"
+fi
+# The same frames on any number of threads (bands of rows of squares), both builds.
+for real in fixed float; do
+  sums=""
+  for th in 1 2 3; do
+    sums="$sums $($B/rt-$real render --frames 0-1200 --step 300 --mode probe --threads $th --checksum 2>/dev/null | md5sum | cut -c1-12)"
+  done
+  read -r s1 s2 s3 <<<"$sums"
+  if [ -n "$s1" ] && [ "$s1" = "$s2" ] && [ "$s1" = "$s3" ]; then
+    pass "probe mode: rt-$real intro frames 0-1200 step 300 identical on 1, 2 and 3 threads"
+  else
+    fail "probe mode: rt-$real frames differ between thread counts:$sums"
+  fi
+done
+# The issue's quality and cost bounds, as ratios on intro frames 0..1200 step 200 at 320x240:
+# at least 6x fewer points shaded than --mode full, PSNR against --mode full --min-contrib 0
+# mean >= 45 dB and worst >= 40 dB (frame 0 is black: identical, left out of the PSNR).
+for real in fixed float; do
+  tot=0 psum=0 n=0 worst=99 list=""
+  for f in 0 200 400 600 800 1000 1200; do
+    $B/rt-$real render --frame $f --mode full --min-contrib 0 -o "$T/pr-ref-$f.ppm" 2>/dev/null
+    st=$($B/rt-$real render --frame $f --mode probe --threads 1 --stats -o "$T/pr-$f.ppm" 2>/dev/null)
+    tot=$((tot + $(sed -n 's/^samples_traced=//p' <<<"$st")))
+    p=$($B/rt-cmp "$T/pr-$f.ppm" "$T/pr-ref-$f.ppm" | sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p')
+    [ "$p" = inf ] && continue
+    list="$list $f:$p"
+    read -r psum n worst < <(awk -v s="$psum" -v n="$n" -v w="$worst" -v p="$p" \
+      'BEGIN { print s + p, n + 1, (p < w ? p : w) }')
+  done
+  # full mode shades 7 x 76800 points
+  verdict=$(awk -v t="$tot" -v s="$psum" -v n="$n" -v w="$worst" \
+    'BEGIN { r = 7 * 76800 / t; m = s / n; printf "%s %.2f %.2f", (r >= 6 && m >= 45 && w >= 40) ? "ok" : "bad", r, m }')
+  read -r v ratio mean <<<"$verdict"
+  if [ "$v" = ok ]; then
+    pass "probe mode, rt-$real intro 0..1200 step 200: ${ratio}x fewer points shaded than full (>= 6), PSNR mean $mean dB (>= 45), worst $worst dB (>= 40)"
+  else
+    fail "probe mode, rt-$real: ${ratio}x fewer shaded points (want >= 6), PSNR mean $mean (>= 45), worst $worst (>= 40):$list"
+  fi
+done
+
 stats=$($B/rt-float render $DEMO --size 80x60 --depth 0 --stats -o "$T/stats0.png" 2>/dev/null)
 if grep -q '^rays_reflect=0$' <<<"$stats" && grep -q '^rays_refract=0$' <<<"$stats" && grep -q '^depth=0$' <<<"$stats"; then
   pass "--depth 0 casts no reflected or refracted ray"

@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -327,6 +328,124 @@ static void test_reflected_outline(void **state)
             assert_int_equal(full[y][x].hits[0].object, 0); /* the sphere is not seen directly */
 }
 
+/* ---- probe mode ----------------------------------------------------------------------------- */
+
+/* Renders the scene in full, adaptive and probe mode. Checks that at least min_percent of the
+ * pixels next to a pixel of another record (rt_probe_same) were shaded or probed, that no pixel is off by more than
+ * max_err levels from the full render (exact_edges: pixels on those edges not at all), and
+ * that probe mode shaded no more points than adaptive mode and probed some. Returns the shaded
+ * points. */
+static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_percent,
+                            const char *name)
+{
+    rt_scene_prepare(s);
+    rt_view v;
+    rt_view_init(&v, &s->camera, W, H);
+    const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
+    rt_params pa = {
+        .depth = s->depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
+    rt_stats st = {0}, sa = {0}, sp = {0};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            rt_trace_pixel(s, &v, &pf, x, y, &st, &full[y][x]);
+    rt_render(s, &v, &pf, fullpx, W, &st, NULL, NULL);
+    rt_render(s, &v, &pa, adpx, W, &sa, work, NULL);
+    pa.mode = RT_MODE_PROBE;
+    assert_true(rt_render_work_size(&pa, W) <= sizeof work);
+    rt_render(s, &v, &pa, adpx, W, &sp, work, traced);
+    int worst = 0, edge = 0, followed = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            int p = y * W + x, on_edge = 0;
+            for (int d = 0; d < 4; d++) {
+                int x2 = x + (d == 0) - (d == 1), y2 = y + (d == 2) - (d == 3);
+                if (x2 >= 0 && y2 >= 0 && x2 < W && y2 < H &&
+                    !rt_probe_same(&full[y][x], &full[y2][x2]))
+                    on_edge = 1;
+            }
+            for (int ch = 0; ch < 3; ch++) {
+                int e =
+                    abs((int)(adpx[p] >> (8 * ch) & 0xFF) - (int)(fullpx[p] >> (8 * ch) & 0xFF));
+                worst = e > worst ? e : worst;
+            }
+            if (on_edge) {
+                edge++;
+                followed += traced[p] != 0;
+                if (exact_edges && traced[p])
+                    assert_int_equal(adpx[p], fullpx[p]);
+            }
+        }
+    print_message("%s: %d edge pixels, shaded %u (adaptive %u), probes %u, worst %d level(s)\n",
+                  name, edge, (unsigned)sp.rays_primary, (unsigned)sa.rays_primary,
+                  (unsigned)sp.probes, worst);
+    assert_true(edge > 0);
+    assert_true(followed * 100 >= edge * min_percent);
+    assert_true(worst <= max_err);
+    assert_true(sp.rays_primary <= sa.rays_primary);
+    assert_true(sp.probes > 0);
+    return sp.rays_primary;
+}
+
+/* Flat-shaded surfaces (no light: each object one colour) cut by a straight edge, a slanted wall
+ * standing on the floor: both sides come out exactly, with far fewer points shaded. */
+static void test_probe_straight_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    s.nlights = 0;
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int mw = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.3, 0.8), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    rt_object *o = &s.objects[s.nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
+    o->axis = vd(1, 0, 0.4);
+    s.camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
+    uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge");
+    rt_stats sa = {0};
+    rt_params pa = {
+        .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    rt_render(&s, &v, &pa, adpx, W, &sa, work, NULL);
+    assert_true(shaded * 2 <= sa.rays_primary); /* at most half of adaptive's */
+}
+
+/* The shadow of a sphere on a matte floor: the edge followed to the pixel by probes (one
+ * shadow ray each), the lit side interpolated within twice the split threshold. */
+static void test_probe_shadow_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int ms = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.6, 0.2), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    add_sphere(&s, ms, -0.5, 2.0, 0, 1.0);
+    s.lights[0].pos = vd(-3, 9, -2);
+    s.camera = (rt_camera){vd(0, 7, 5), vd(0.5, 0, 0.5), vd(0, 1, 0), from_d(45)};
+    check_probe(&s, 0, 32, 100, "probe: shadow edge"); /* twice the split threshold */
+}
+
+/* A sphere seen only in a mirror floor: the reflected outline is followed to the pixel where
+ * adaptive mode follows it (90%), probes telling the sides apart by the object their mirror ray
+ * hits. */
+static void test_probe_reflected_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mf = add_material(
+        &s,
+        (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1), .reflect = from_d(0.7)});
+    int ms = add_material(&s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    add_sphere(&s, ms, 0, 3.5, -3, 1.0);
+    s.lights[0].pos = vd(0, 20, 20);
+    s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
+    check_probe(&s, 0, 64, 90, "probe: reflected edge"); /* what adaptive mode misses too */
+}
+
 /* Every frame size, multiple of the grid or not, down to a single pixel: every pixel written,
  * the corners of the grid traced, and a flat picture comes out exactly as in full mode. */
 static void test_sizes(void **state)
@@ -398,7 +517,7 @@ static void test_bands(void **state)
     const int grids[] = {2, 4, 8, 16};
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
         for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
-            for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
+            for (int mode = RT_MODE_FULL; mode <= RT_MODE_PROBE; mode++) {
                 int w = sizes[n][0], h = sizes[n][1];
                 const rt_params p = {
                     .depth = 2, .mode = mode, .grid = grids[g], .threshold = TS_THRESHOLD};
@@ -437,7 +556,7 @@ static void test_bands_into(void **state)
     const int grids[] = {2, 4, 8, 16};
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
         for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
-            for (int mode = RT_MODE_FULL; mode <= RT_MODE_ADAPTIVE; mode++) {
+            for (int mode = RT_MODE_FULL; mode <= RT_MODE_PROBE; mode++) {
                 int w = sizes[n][0], h = sizes[n][1];
                 const rt_params p = {
                     .depth = 2, .mode = mode, .grid = grids[g], .threshold = TS_THRESHOLD};
@@ -524,6 +643,9 @@ int main(void)
         cmocka_unit_test(test_bands),
         cmocka_unit_test(test_bands_into),
         cmocka_unit_test(test_min_contrib),
+        cmocka_unit_test(test_probe_straight_edge),
+        cmocka_unit_test(test_probe_shadow_edge),
+        cmocka_unit_test(test_probe_reflected_edge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

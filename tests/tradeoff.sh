@@ -15,7 +15,7 @@
 # image for the fixed (fixed16) rows, the soft-float image for the float rows; exact counts. Grids 2
 # and 16 do not fit the board's RAM (n/a). Without qemu-system-arm the ARM columns stay empty,
 # with a note (ARM=0 does the same).
-# Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 39 configurations, about
+# Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 42 configurations, about
 # 3 minutes on the 2-core build machine (host timing 35 s, ARM926 2.5 minutes, mostly the
 # soft-float image). QUICK=1: two configurations on one frame, one round, the board's fixed
 # default as the base (make test's smoke run, a few seconds).
@@ -30,6 +30,7 @@ REF_OPTS="--mode full --min-contrib 0 --depth 8"
 CONFIGS=(
   "default|"
   "full|--mode full"
+  "probe|--mode probe"
   "grid 4|--grid 4"
   "grid 16|--grid 16"
   "threshold 0.03|--threshold 0.03"

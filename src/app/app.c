@@ -129,8 +129,8 @@ static void app_print_stats(const cli_opts *o, const char *scene_name, const rt_
     printf("%s\n", scene->effects ? "" : "none");
     printf("reach_depth=%d\n",
            params->depth < scene->reach_depth ? params->depth : scene->reach_depth);
-    printf("mode=%s\n", o->k.mode == RT_MODE_ADAPTIVE ? "adaptive" : "full");
-    if (o->k.mode == RT_MODE_ADAPTIVE)
+    printf("mode=%s\n", rt_mode_name(o->k.mode));
+    if (o->k.mode != RT_MODE_FULL)
         printf("grid=%d\nthreshold=%ld.%04ld\n", o->k.grid, (long)o->k.threshold / KNOBS_SCALE,
                (long)o->k.threshold % KNOBS_SCALE);
     printf("min_contrib=%ld.%04ld\n", (long)o->k.min_contrib / KNOBS_SCALE,
@@ -149,7 +149,11 @@ static void app_print_stats(const cli_opts *o, const char *scene_name, const rt_
            FRAME_SUM(t, rays_reflect, 0), FRAME_SUM(t, rays_refract, 0));
     printf("shadow_tests=%llu\n", FRAME_SUM(t, shadow_tests, 0));
     printf("noise_octaves=%llu\n", FRAME_SUM(t, noise_octaves, 0));
-    if (o->k.mode == RT_MODE_ADAPTIVE) {
+    if (o->k.mode == RT_MODE_PROBE)
+        printf("probes=%llu\nprobe_rays_shadow=%llu\nprobe_rays_secondary=%llu\n",
+               FRAME_SUM(t, probes, 0), FRAME_SUM(t, probe_shadow, 0),
+               FRAME_SUM(t, probe_secondary, 0));
+    if (o->k.mode != RT_MODE_FULL) {
         for (int l = 0, size = o->k.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
             printf("squares_%d=%llu\nsplit_%d=%llu\n", size, FRAME_SUM(t, squares, l), size,
                    FRAME_SUM(t, split, l));

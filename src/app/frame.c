@@ -73,7 +73,9 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++)
             if (traced[(long)y * width + x])
-                pixels[(long)y * stride + x] = 0xFFFFFF;
+                pixels[(long)y * stride + x] =
+                    !RT_COMPILED_PROBE || traced[(long)y * width + x] == 1 ? 0xFFFFFFu
+                                                                           : FRAME_PROBE_COLOR;
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,

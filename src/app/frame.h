@@ -38,8 +38,10 @@ void frame_free(frame_ctx *fc);
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,
                   uint32_t *pixels, int stride, frame_sums *sums, uint8_t *traced);
 
-/* Paints white every pixel of a width x height frame whose byte in `traced` (width per row) is
- * set: the points adaptive subsampling traced (--show-samples, the player's S key). */
+/* Paints every pixel of a width x height frame whose byte in `traced` (width per row) is set:
+ * white the points shaded in full (1), FRAME_PROBE_COLOR the points only probed (2, probe
+ * mode) (--show-samples, the player's S key). */
+#define FRAME_PROBE_COLOR 0xFF00FFu
 void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, const uint8_t *traced);
 
 #endif

@@ -40,7 +40,7 @@ extern const scn_desc scn_intro;
 #define INTRO_H 240
 #endif
 
-/* Working storage of the adaptive mode at INTRO_W (see rt_render_work_size): two rows of
+/* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): two rows of
  * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
  * default). Grids 2 and 16 need about 10 KB more, beyond the board's 32 KiB RAM budget. */
 #define INTRO_WORK(g) (2 * (INTRO_W / (g) + 2) + ((g) + 1) * ((g) + 1))

@@ -55,8 +55,7 @@ static void play_status(const play_opts *o, const rt_params *p, int64_t ms, int 
              "fixray %s - %s - %lu.%lu s - %lu.%lu fps - %lu.%lu ms/frame (worst %lu.%lu) - %s "
              "grid %d - %d thread%s%s",
              PLAY_REAL, o->name, PLAY_TENTHS((uint64_t)ms / 100), PLAY_TENTHS(fps10),
-             PLAY_TENTHS(mean10), PLAY_TENTHS(worst10),
-             p->mode == RT_MODE_ADAPTIVE ? "adaptive" : "full", p->grid, o->threads,
+             PLAY_TENTHS(mean10), PLAY_TENTHS(worst10), rt_mode_name(p->mode), p->grid, o->threads,
              o->threads == 1 ? "" : "s", paused ? " - paused" : "");
     plat_display_status(title);
 }

@@ -28,7 +28,7 @@ static void render_band(const rt_scene *s, const rt_view *v, const rt_params *p,
 {
     if (nbands < 1 || band < 0 || band >= nbands)
         return;
-    if (p->mode == RT_MODE_ADAPTIVE)
+    if (p->mode != RT_MODE_FULL)
         rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced, band, nbands, mem);
     else
         render_full(s, v, p, pixels,

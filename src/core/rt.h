@@ -162,7 +162,8 @@ typedef struct rt_sample {
     rt_color color;
     uint8_t nhits; /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
     uint8_t light_state[RT_MAX_LIGHTS]; /* at the primary hit: 0 unlit, 1 lit, 2 highlight */
-    uint8_t cell; /* texture cell at the primary hit (checker), 0 for other textures */
+    uint8_t cell;   /* texture cell at the primary hit (checker), 0 for other textures */
+    uint8_t probed; /* probe mode: 1 when the colour was reconstructed from a probe, not shaded */
     rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
 } rt_sample;
 
@@ -171,7 +172,21 @@ typedef struct rt_sample {
 #define RT_GRID_MAX 16
 #define RT_GRID_LEVELS 4
 
-enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE };
+/* full: every pixel traced; adaptive: the thesis' adaptive subsampling; probe: adaptive
+ * subsampling whose new points are probed first and shaded only where needed (probe.c). */
+enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE, RT_MODE_PROBE };
+
+/* Is probe mode compiled in? The intro player (build/intro-*), which renders adaptively only,
+ * defines this to 0 to stay within its 64 kB: rt_render then takes RT_MODE_PROBE as adaptive. */
+#ifndef RT_COMPILED_PROBE
+#define RT_COMPILED_PROBE 1
+#endif
+
+/* The name of a mode as --mode takes it: "full", "adaptive" or "probe". */
+static inline const char *rt_mode_name(int mode)
+{
+    return mode == RT_MODE_FULL ? "full" : mode == RT_MODE_PROBE ? "probe" : "adaptive";
+}
 
 /* How a frame is rendered. */
 typedef struct rt_params {
@@ -195,6 +210,9 @@ typedef struct rt_stats {
     uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
     uint32_t split_by[5];             /* adaptive: splits by enum rt_split_reason */
+    uint32_t probes;                  /* probe mode: points probed (rt_probe_pixel) */
+    uint32_t probe_shadow;            /* probe mode: shadow rays cast by the probes */
+    uint32_t probe_secondary;         /* probe mode: reflected and refracted probe rays */
 } rt_stats;
 
 /* Why the corners of a square disagree, in the order the criteria are checked. */
@@ -252,6 +270,15 @@ dir3 rt_view_ray(const rt_view *v, int x, int y);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
+/* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
+ * its cost. With `whole`: nhits, each stored node's object and level and the primary hit's
+ * light states (nearest hits along the same ray tree, shadow rays at the primary hit only; cell
+ * 0); without: the primary object and its checker cell alone (nhits = 1, light states 0).
+ * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
+ * Counts its rays in *stats as rt_trace_pixel does. */
+void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    int whole, rt_stats *stats, rt_sample *out);
+
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
@@ -271,8 +298,9 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 o
 
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
- * aligned for rt_sample. If `traced` is not NULL it gets one byte per pixel (`width` per row):
- * 1 where a ray was traced, 0 elsewhere. */
+ * aligned for rt_sample (probe mode the same). If `traced` is not NULL it gets one byte per pixel
+ * (`width` per row): 1 where a point was shaded in full, 2 where it was only probed (probe mode),
+ * 0 elsewhere. */
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced);
 
@@ -311,10 +339,32 @@ enum rt_band_memory {
     RT_BAND_KEEP   /* only the band, and `work` holds its top row of corners (keep) */
 };
 
-/* The adaptive mode of rt_render_band and rt_render_band_into (subsample.c). */
+/* The adaptive and probe modes of rt_render_band and rt_render_band_into (subsample.c). */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
                         int nbands, enum rt_band_memory mem);
+
+/* Probe mode (probe.c), for a point (x, y) that splitting a square adds: probes it
+ * (rt_probe_pixel) and compares its record with its n context samples k[]: the ends of the
+ * edge it lies on (n = 2, the point at fraction tx from k[0] to k[1]) or the corners of the
+ * square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty));
+ * `span` is the context's size in pixels (the edge's length, the square's larger side).
+ * Returns 1 when the point's colour can be reconstructed: two or more context samples have
+ * its record (rt_probe_same), or one and span <= RT_PROBE_ONE_SPAN; the record is on no noise
+ * texture, meets no texture beyond the primary hit, has no highlight; and those samples'
+ * contributions agree within thr8 (1/255 steps). *out then gets the probe's record, the colour
+ * interpolated from those samples alone (along x within each row of the context, then between
+ * the rows; a row with one matching sample gives its colour), the contributions of the first
+ * of them and probed = 1. Returns 0 when the point must be shaded in full (*out is then
+ * scratch). Counts probes and their rays in st->probes, probe_shadow and probe_secondary. */
+#define RT_PROBE_ONE_SPAN 4
+int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
+                   int x, int y, int n, const rt_sample *const k[], real tx, real ty, int span,
+                   rt_sample *out);
+
+/* Do two records have the same shape: primary object and cell, light states, and the objects
+ * and levels of the ray tree (what rt_corners_differ compares before contributions)? */
+int rt_probe_same(const rt_sample *a, const rt_sample *b);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -1,4 +1,4 @@
-/* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest. */
+/* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest (probe mode: probe the points a split adds first, probe.c). */
 #include <string.h>
 
 #include "rt.h"
@@ -20,7 +20,7 @@ static int ss_corner(int i, int g, int n)
 
 unsigned long rt_render_work_size(const rt_params *p, int width)
 {
-    if (p->mode != RT_MODE_ADAPTIVE)
+    if (p->mode == RT_MODE_FULL)
         return 0;
     unsigned long row = (unsigned long)ss_count(width, p->grid) + 1;
     unsigned long side = (unsigned long)p->grid + 1;
@@ -29,7 +29,7 @@ unsigned long rt_render_work_size(const rt_params *p, int width)
 
 int rt_render_band_count(const rt_params *p, int height)
 {
-    return p->mode == RT_MODE_ADAPTIVE ? ss_count(height, p->grid) : height;
+    return p->mode != RT_MODE_FULL ? ss_count(height, p->grid) : height;
 }
 
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
@@ -191,6 +191,7 @@ typedef struct ss_ctx {
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
 {
     rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
+    out->probed = 0;
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
@@ -207,6 +208,44 @@ static const rt_sample *ss_at(ss_ctx *c, int x, int y)
     if (sm->nhits == 0)
         ss_trace(c, x, y, sm);
     return sm;
+}
+
+/* Probe mode: the point (x, y) a split adds, with its context k (rt_probe_point); probed, and
+ * shaded in full only when rt_probe_point cannot give its colour. A point some square added
+ * before is kept: it got its record from the same context (the ends of its edge), so the frame
+ * does not depend on the order squares are visited in. */
+static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
+                                                   const rt_sample *const k[], real tx, real ty,
+                                                   int span)
+{
+    rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
+    if (sm->nhits)
+        return;
+    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, span,
+                       sm)) {
+        if (c->traced)
+            __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
+    } else {
+        ss_trace(c, x, y, sm);
+    }
+}
+
+/* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
+ * corners): the middles of the edges it halves, each against the ends of its edge, and the
+ * centre against the four corners. */
+static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
+                                                     int nx, int ny, const rt_sample *const k[4])
+{
+    real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
+    int xm = x0 + w / 2, ym = y0 + h / 2;
+    for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
+        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, tx, 0, w);
+    for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
+        const rt_sample *kk[2] = {k[i], k[i + 2]};
+        ss_probe_new(c, x0 + i * w, ym, 2, kk, ty, 0, h);
+    }
+    if (nx == 2 && ny == 2)
+        ss_probe_new(c, xm, ym, 4, k, tx, ty, w > h ? w : h);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the
@@ -233,6 +272,8 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
                 ys[1] = y0 + h / 2;
                 ny = 2;
             }
+            if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
+                ss_probe_split(c, x0, y0, w, h, nx, ny, k);
             for (int j = 0; j < ny; j++)
                 for (int i = 0; i < nx; i++)
                     ss_square(c, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j], level + 1,
@@ -344,7 +385,7 @@ void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, i
     int b0 = (int)((long)n * band / nbands), b1 = (int)((long)n * (band + 1) / nbands);
     if (b0 == b1)
         return;
-    if (p->mode == RT_MODE_ADAPTIVE) {
+    if (p->mode != RT_MODE_FULL) {
         /* rows of squares b0 .. b1 - 1: each owns its top row, the last one the frame's end */
         *y0 = ss_corner(b0, p->grid, height);
         *rows = (b1 == n ? height : ss_corner(b1, p->grid, height)) - *y0;

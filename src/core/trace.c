@@ -10,7 +10,11 @@ typedef struct trace_ctx {
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     real pixel;       /* a pixel's footprint per unit of ray length, 0 = footprint off */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
+    int probe; /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record */
 } trace_ctx;
+
+/* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
+#define TRACE_PROBE(c) (RT_COMPILED_PROBE && (c)->probe)
 
 static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
 {
@@ -26,6 +30,23 @@ static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
     if (sm->nhits < 255)
         sm->nhits++;
 }
+
+#if RT_COMPILED_PROBE
+/* A probe of the primary hit alone (rt_probe_pixel without `whole`): p on object id of
+ * material m; records the object and its checker cell. Out of line, off the shading path. */
+static __attribute__((noinline)) rt_color trace_probe_hit(trace_ctx *c, const rt_material *m,
+                                                          vec3 p, int id)
+{
+    uint8_t cell = 0;
+    if (rt_scene_has(c->scene, RT_FX_TEXTURE) && m->tex.kind == RT_TEX_CHECKER)
+        rt_texture_color(m, p, 0, 0, c->stats, &cell);
+    c->sample->cell = cell;
+    trace_record(c, id, 0, c->scene->background);
+    return c->scene->background;
+}
+#else
+#define trace_probe_hit(c, m, p, id) ((c)->scene->background)
+#endif
 
 /* What one hit point looks like to the lights (trace_light's input). */
 typedef struct trace_hit {
@@ -126,6 +147,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
     vec3 p = v3_along_in(org, d, t);
+    if (TRACE_PROBE(c) && c->probe == 1)
+        return trace_probe_hit(c, m, p, id);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -137,19 +160,22 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
+    /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
+     * primary hit. */
     uint8_t cell = 0;
     /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
      * than any noise octave) so that it cannot saturate however deep the recursion */
     const real travel_max = r_muli(R_SCENE_MAX, 2);
     travelled = t < r_sub(travel_max, travelled) ? r_add(travelled, t) : travel_max;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE)
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c)
         ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
     trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
-    for (int i = 0; i < s->nlights; i++) {
+    int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
+    for (int i = 0; i < nlights; i++) {
         uint8_t state = trace_light(c, &h, i, &col);
         if (level == 0)
             c->sample->light_state[i] = state;
@@ -195,13 +221,21 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     return col;
 }
 
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out)
+/* Shared by rt_trace_pixel and rt_probe_pixel; without probe mode (RT_COMPILED_PROBE) inlined
+ * into rt_trace_pixel, its only caller. */
+#if RT_COMPILED_PROBE
+#define TRACE_POINT static
+#else
+#define TRACE_POINT static inline __attribute__((always_inline))
+#endif
+TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                             rt_stats *stats, rt_sample *out, int probe)
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {s,           stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0,
-                   eye_prepared};
+    trace_ctx c = {
+        s,    stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0, eye_prepared,
+        probe};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
@@ -210,3 +244,17 @@ void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, 0, -1);
 }
+
+void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    rt_stats *stats, rt_sample *out)
+{
+    trace_point(s, v, p, x, y, stats, out, 0);
+}
+
+#if RT_COMPILED_PROBE
+void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    int whole, rt_stats *stats, rt_sample *out)
+{
+    trace_point(s, v, p, x, y, stats, out, whole ? 2 : 1);
+}
+#endif

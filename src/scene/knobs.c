@@ -109,11 +109,13 @@ int knobs_parse(knobs *k, const char *opt, const char *val, const char **expecte
     if (i < 0)
         return 0;
     if (i == KNOBS_NOPTS) {
-        *expected = "expected full or adaptive";
+        *expected = "expected full, adaptive or probe";
         if (knobs_eq(val, "full"))
             k->mode = RT_MODE_FULL;
         else if (knobs_eq(val, "adaptive"))
             k->mode = RT_MODE_ADAPTIVE;
+        else if (knobs_eq(val, "probe"))
+            k->mode = RT_MODE_PROBE;
         else
             return -1;
         return 1;
