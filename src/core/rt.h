@@ -229,6 +229,15 @@ enum rt_split_reason {
  * 2 R_EPS_OFFSET from the light, which could put its end behind that surface. */
 #define RT_NEAR_LIGHT r_muli(R_EPS_OFFSET, 4)
 
+/* Marks a helper the tracer keeps out of line on 32-bit ARM, where its loop would otherwise
+ * spill the ray to the stack (fewer instructions there, measured under QEMU); elsewhere (x86-64,
+ * twice the registers) inlining it measured cheaper, so the compiler decides. */
+#if defined(__arm__)
+#define RT_OUT_OF_LINE __attribute__((noinline))
+#else
+#define RT_OUT_OF_LINE
+#endif
+
 /* Per-type interface: every shape is intersected and shaded through this table. */
 typedef struct rt_shape_ops {
     /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. */

@@ -84,8 +84,8 @@ SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tm
 
 /* The plane test out of line, for the loops over objects: planes are few, and the spheres'
  * loop then keeps the ray in registers. */
-static __attribute__((noinline)) int shapes_plane(const rt_object *o, const vec3 *org,
-                                                  const dir3 *d, real tmax, real *t)
+static RT_OUT_OF_LINE int shapes_plane(const rt_object *o, const vec3 *org, const dir3 *d,
+                                       real tmax, real *t)
 {
     return plane_intersect(o, *org, *d, tmax, t);
 }
@@ -143,9 +143,9 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
 }
 
 /* The full test of a shadow-ray candidate, kept out of line: the loop below then holds the ray
- * and the light in registers instead of sharing them with the intersection code. */
-static __attribute__((noinline)) int shapes_blocks(const rt_object *o, const vec3 *org,
-                                                   const dir3 *d, real dist)
+ * and the light in registers instead of sharing them with the intersection code (RT_OUT_OF_LINE). */
+static RT_OUT_OF_LINE int shapes_blocks(const rt_object *o, const vec3 *org, const dir3 *d,
+                                        real dist)
 {
     real hit;
     return shapes_intersect(o, *org, *d, dist, &hit);

@@ -91,11 +91,16 @@ static const int32_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
     SS_ROW(6),  SS_ROW(7),  SS_ROW(8),  SS_ROW(9),  SS_ROW(10), SS_ROW(11),
     SS_ROW(12), SS_ROW(13), SS_ROW(14), SS_ROW(15), SS_ROW(16)};
 
+/* A colour already clamped to [0, 1] (ss_trace clamps every sample's). */
 static ss_rgb ss_rgb_of(rt_color c)
 {
-    ss_rgb v = {{r_unit_to_q16(r_clamp(c.x, 0, R_ONE)), r_unit_to_q16(r_clamp(c.y, 0, R_ONE)),
-                 r_unit_to_q16(r_clamp(c.z, 0, R_ONE))}};
+    ss_rgb v = {{r_unit_to_q16(c.x), r_unit_to_q16(c.y), r_unit_to_q16(c.z)}};
     return v;
+}
+
+static ss_rgb ss_rgb_clamped(rt_color c)
+{
+    return ss_rgb_of(v3(r_clamp(c.x, 0, R_ONE), r_clamp(c.y, 0, R_ONE), r_clamp(c.z, 0, R_ONE)));
 }
 
 /* d * t / 2^16 rounded half away from zero (as r_mul rounds), for |d| <= 65536 and
@@ -167,8 +172,8 @@ void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows,
 {
     if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
         return;
-    ss_fill(dst, stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_of(c00), ss_rgb_of(c10),
-            ss_rgb_of(c01), ss_rgb_of(c11));
+    ss_fill(dst, stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_clamped(c00),
+            ss_rgb_clamped(c10), ss_rgb_clamped(c01), ss_rgb_clamped(c11));
 }
 
 /* One frame's adaptive rendering state. */

@@ -59,9 +59,9 @@ typedef struct trace_hit {
 } trace_hit;
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
- * unlit, 1 lit, 2 highlight). Out of line: the caller's loop then keeps less in registers. */
-static __attribute__((noinline)) uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i,
-                                                     rt_color *col)
+ * unlit, 1 lit, 2 highlight). Out of line on ARM (RT_OUT_OF_LINE): the caller's loop then keeps
+ * less in registers. */
+static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i, rt_color *col)
 {
     const rt_scene *s = c->scene;
     const rt_material *m = h->m;
