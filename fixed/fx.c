@@ -98,9 +98,12 @@ uint32_t fx_isqrt64(uint64_t n)
     /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
      * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
     int h = k >> 1;
-    uint64_t rr = h ? (s + ((uint64_t)1 << (h - 1))) >> h : s;
-    if (rr > UINT32_MAX)
-        rr = UINT32_MAX;
+    /* s is at most 2^32 (x < 2^64); capping it at 2^32 - 1 changes no result: for h = 0 rr is
+     * capped the same, for h >= 1 2^32 + 2^(h-1) is no multiple of 2^h, so the rounded shift
+     * is the same. Then the rounded shift in 32 bits: s / 2^h rounded half up is s >> h plus
+     * bit h - 1 of s. */
+    uint32_t s32 = s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
+    uint64_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
     int64_t d = (int64_t)(n - (uint64_t)(uint32_t)rr * (uint32_t)rr); /* |d| < 2^34: wraps back */
     rr += (d > (int64_t)rr) - (d <= -(int64_t)rr);
     return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
