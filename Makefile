@@ -123,7 +123,7 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/edges.c platform/null.c tests/fuzz_scene.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/topt.c src/tools/edges.c platform/null.c tests/fuzz_scene.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -169,11 +169,14 @@ $(BUILD)/rt-fixed: $(CORE_OBJS_fixed) $(APP_OBJS_fixed) $(FIXMATH_LIB_fixed)
 $(BUILD)/rt-fixed16: $(CORE_OBJS_fixed16) $(APP_OBJS_fixed16) $(FIXMATH_LIB_fixed)
 	$(CC) $(OPT) -o $@ $^ $(LIBS)
 
-$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/app/image.o $(BUILD)/obj/float/src/app/outpath.o
+$(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/tools/topt.o \
+                $(BUILD)/obj/float/src/scene/knobs.o \
+                $(BUILD)/obj/float/src/app/image.o $(BUILD)/obj/float/src/app/outpath.o
 	$(CC) $(OPT) -o $@ $^ $(TOOL_LIBS)
 
 # The scene compiler runs at build time, so it is built from the float objects.
-$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/scene/scn_parse.o \
+$(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/tools/topt.o \
+                   $(BUILD)/obj/float/src/scene/scn_parse.o \
                    $(BUILD)/obj/float/src/scene/scn_cwrite.o \
                    $(BUILD)/obj/float/src/app/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm

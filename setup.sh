@@ -15,11 +15,12 @@ deps="$top/build/deps"
 # Packages for building and playing on the host (make, make run).
 packages=(gcc make pkg-config libc6-dev libpng-dev libcmocka-dev libsdl2-dev xz-utils ca-certificates)
 # The ARM926 images and their emulator (--arm). What the test suite needs besides (--test):
-# clang and libclang-rt-14-dev build the scene fuzzer (libFuzzer), valgrind and time serve the
-# memcheck run and the soak, Xvfb an X server for the player, gnuplot make tradeoff's plot.
+# clang and libclang-rt-14-dev build the scene fuzzer (libFuzzer), clang-format checks the C
+# files' formatting, valgrind and time serve the memcheck run and the soak, Xvfb an X server for
+# the player, gnuplot make tradeoff's plot.
 # QEMU's window (--gui).
 arm_packages=(gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi qemu-system-arm)
-test_packages=(clang libclang-rt-14-dev valgrind time xvfb xauth gnuplot-nox)
+test_packages=(clang clang-format libclang-rt-14-dev valgrind time xvfb xauth gnuplot-nox)
 gui_packages=(qemu-system-gui)
 
 # libfixmath: the Debian source package version, and the upstream tarball it ships.

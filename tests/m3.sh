@@ -46,7 +46,8 @@ else
 fi
 
 # Render settings on the board: byte for byte the host's with the same settings, not the default.
-for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2"; do
+for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2" \
+         "--footprint off" "--footprint=off --octaves=2"; do
   n=425
   # shellcheck disable=SC2086  # settings are words on purpose
   if platform/m3/qemu.sh frames $S $n >"$T/set.log" 2>&1 &&

@@ -44,6 +44,24 @@ else
   fail "layers: $bad (control: $ctl)"
 fi
 
+# ---- formatting and links ------------------------------------------------------------------------
+# Every C file is as the checked-in .clang-format has it (setup.sh --test installs clang-format).
+cfiles=$(find fixed src platform tests -name '*.[ch]' | sort)
+if ! command -v clang-format >/dev/null; then
+  fail "format: clang-format is not installed (./setup.sh --test)"
+# shellcheck disable=SC2086  # one word per file
+elif out=$(clang-format --dry-run --Werror $cfiles 2>&1); then
+  pass "format: clang-format --dry-run --Werror passes on the $(wc -w <<<"$cfiles") C files of fixed/ src/ platform/ tests/"
+else
+  fail "format: files differ from .clang-format (run clang-format -i on them): $(grep -o '^[^:]*\.[ch]' <<<"$out" | sort -u | tr '\n' ' ')"
+fi
+# Every relative link of README.md and docs/*.md leads to a file, every #anchor to a heading.
+if out=$(tests/links.sh 2>&1); then
+  pass "$out (each resolves to a file, each #anchor to a heading)"
+else
+  fail "links: $(tr '\n' ';' <<<"$out")"
+fi
+
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
   for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do

@@ -7,7 +7,8 @@
 #   platform/arm/qemu.sh bench  [REAL] [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP
 # REAL is fixed (default), float (soft-float) or fixed16 (build/arm/intro-fixed16.elf, unit
 # vectors in Q16.16). SETTINGS are render's options --depth N, --mode full|adaptive, --grid N,
-# --threshold X, --min-contrib X, --octaves N and --footprint on|off (defaults as for render); the board parses and checks them
+# --threshold X, --min-contrib X, --octaves N and --footprint on|off, as `--opt value` or
+# `--opt=value` (defaults as for render; platform/qemu-settings.sh splits them); the board parses and checks them
 # (grids 4 and 8 only: the working storage of grids 2 and 16 does not fit its RAM budget). A
 # fixed frame rendered with settings is byte for byte `build/rt-fixed render --size 320x240
 # --frame N SETTINGS`.
@@ -37,25 +38,9 @@ command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: 
 timeout_s=${QEMU_TIMEOUT:-600}
 case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
 
-for a in "$@"; do
-  case "$a" in *[!A-Za-z0-9/_.=-]*|'') die "argument '$a': use letters, digits and / _ . = - only" ;; esac
-done
 # The render settings go to the board first (it checks their values); the rest stay in order.
-settings=()
-args=()
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --depth|--mode|--grid|--threshold|--min-contrib|--octaves|--footprint)
-      [ $# -ge 2 ] || die "$1 needs a value"
-      settings+=("$1" "$2")
-      shift 2 ;;
-    --depth=*|--mode=*|--grid=*|--threshold=*|--min-contrib=*|--octaves=*|--footprint=*)
-      settings+=("$1")
-      shift ;;
-    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint)" ;;
-    *) args+=("$1"); shift ;;
-  esac
-done
+. platform/qemu-settings.sh
+qemu_settings "$@"
 set -- "${args[@]}"
 # The guest's argument list goes through semihosting: arg=intro,arg=CMD,arg=...
 semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }

@@ -7,7 +7,9 @@
 #   platform/m3/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
 #   platform/m3/qemu.sh show   [SETTINGS] N SCREEN.ppm     frame N on the OLED, saved by QEMU's
 #                                                          screendump (512x256: 4x4 per pixel)
-# SETTINGS are render's --depth, --mode, --grid (4 or 8), --threshold, --min-contrib and --octaves.
+# SETTINGS are render's options --depth N, --mode full|adaptive, --grid N (4 or 8 on the board),
+# --threshold X, --min-contrib X, --octaves N and --footprint on|off, as `--opt value` or
+# `--opt=value` (defaults as for render; platform/qemu-settings.sh splits them, the board checks them).
 # frames, bench and show run headless under `-icount shift=0` (one guest instruction = 1 ns of
 # virtual time: exact, repeatable counts, 20 ns steps of the board's 50 MHz SysTick) and print
 # `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use
@@ -35,21 +37,9 @@ if [ "$cmd" = show ]; then
   set -- "${@:1:$#-1}"
   case "$screen" in *.ppm) ;; *) die "show: the screen file must end in .ppm, not '$screen'" ;; esac
 fi
-for a in "$@"; do
-  case "$a" in *[!A-Za-z0-9/_.-]*|'') die "argument '$a': use letters, digits and / _ . - only" ;; esac
-done
-settings=()
-args=()
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --depth|--mode|--grid|--threshold|--min-contrib|--octaves)
-      [ $# -ge 2 ] || die "$1 needs a value"
-      settings+=("$1" "$2")
-      shift 2 ;;
-    -*) die "unknown option '$1' (settings: --depth, --mode, --grid, --threshold, --min-contrib, --octaves)" ;;
-    *) args+=("$1"); shift ;;
-  esac
-done
+# The render settings go to the board first (it checks their values); the rest stay in order.
+. platform/qemu-settings.sh
+qemu_settings "$@"
 set -- "${args[@]+"${args[@]}"}"
 semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 common=(-M lm3s6965evb -kernel "$elf")

@@ -16,9 +16,6 @@
 #include "scn.h"
 #include "scn_parse.h"
 
-/* The intro, scenes/intro.scene compiled into the program at build time (rt-scenec). */
-extern const scn_desc scn_intro;
-
 #define APP_REAL REAL_NAME
 
 #define APP_PROGRESS_STEP 5 /* percent between progress lines when not on a terminal */

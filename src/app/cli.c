@@ -427,10 +427,10 @@ int cli_parse(int cmd, int argc, char **argv, cli_opts *o)
 {
     uint32_t given = 0; /* one bit per row */
     for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *eq = strncmp(a, "--", 2) == 0 ? strchr(a, '=') : NULL;
+        const char *a = argv[i], *eq = a[0] == '-' ? strchr(a, '=') : NULL;
         char name[32];
         int row;
-        /* --opt=value: the name before the '=' */
+        /* --opt=value (or -o=value): the name before the '=' */
         if (eq && (size_t)(eq - a) < sizeof name) {
             memcpy(name, a, (size_t)(eq - a));
             name[eq - a] = 0;
@@ -456,6 +456,8 @@ int cli_parse(int cmd, int argc, char **argv, cli_opts *o)
         } else if (!r->arg && v) {
             return cli_error(name, "takes no value", v);
         }
+        if (r->arg && !*v)
+            return cli_error(name, "needs a value, not an empty one", NULL);
         if (given & (1u << row))
             return cli_error(name, "is given more than once", NULL);
         given |= 1u << row;

@@ -30,9 +30,6 @@
 #include "rt.h"
 #include "scn.h"
 
-/* The intro, scenes/intro.scene compiled in at build time (rt-scenec). */
-extern const scn_desc scn_intro;
-
 #ifndef INTRO_W
 #define INTRO_W 320
 #endif

@@ -1,7 +1,6 @@
 /* player.c: the intro player, the desktop twin of the original 64 kB intro: plays the built-in intro in a window (build/intro-fixed, build/intro-float), with play's options (cli.c) but --scene. */
 #include "cli.h"
-
-extern const scn_desc scn_intro;
+#include "scn.h"
 
 int app_main(int argc, char **argv)
 {

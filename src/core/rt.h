@@ -202,27 +202,28 @@ typedef struct rt_params {
     int footprint;    /* 1: noise octaves finer than a pixel's footprint are left out */
 } rt_params;
 
-typedef struct rt_stats {
-    uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
-    uint32_t shadow_tests;            /* object intersection tests made by shadow rays */
-    uint32_t noise_octaves;           /* noise octaves summed by the textures evaluated (each noise
-                               texture at a point adds the octaves it sums) */
-    uint32_t squares[RT_GRID_LEVELS]; /* adaptive: squares examined at each level */
-    uint32_t split[RT_GRID_LEVELS];   /* adaptive: of those, split into four */
-    uint32_t split_by[5];             /* adaptive: splits by enum rt_split_reason */
-    uint32_t probes;                  /* probe mode: points probed (rt_probe_pixel) */
-    uint32_t probe_shadow;            /* probe mode: shadow rays cast by the probes */
-    uint32_t probe_secondary;         /* probe mode: reflected and refracted probe rays */
-} rt_stats;
-
 /* Why the corners of a square disagree, in the order the criteria are checked. */
 enum rt_split_reason {
     RT_SPLIT_NONE,      /* the corners agree: interpolate */
     RT_SPLIT_OBJECT,    /* primary object, or its checker cell, differs */
     RT_SPLIT_LIGHT,     /* a light's state differs */
     RT_SPLIT_SECONDARY, /* the ray tree's shape or an object at a secondary level differs */
-    RT_SPLIT_CONTRIB    /* a node's contribution differs by more than the threshold */
+    RT_SPLIT_CONTRIB,   /* a node's contribution differs by more than the threshold */
+    RT_SPLIT_COUNT      /* the number of reasons, RT_SPLIT_NONE included */
 };
+
+typedef struct rt_stats {
+    uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
+    uint32_t shadow_tests;             /* object intersection tests made by shadow rays */
+    uint32_t noise_octaves;            /* noise octaves summed by the textures evaluated (each noise
+                               texture at a point adds the octaves it sums) */
+    uint32_t squares[RT_GRID_LEVELS];  /* adaptive: squares examined at each level */
+    uint32_t split[RT_GRID_LEVELS];    /* adaptive: of those, split into four */
+    uint32_t split_by[RT_SPLIT_COUNT]; /* adaptive: splits by enum rt_split_reason */
+    uint32_t probes;                   /* probe mode: points probed (rt_probe_pixel) */
+    uint32_t probe_shadow;             /* probe mode: shadow rays cast by the probes */
+    uint32_t probe_secondary;          /* probe mode: reflected and refracted probe rays */
+} rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the
  * plain ray from an offset origin along the direction from the hit point ends up to

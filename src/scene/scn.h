@@ -120,6 +120,10 @@ typedef struct scn_desc {
     const scn_key *keys;
 } scn_desc;
 
+/* The built-in intro: scenes/intro.scene compiled by rt-scenec (scn_write_c) into
+ * build/gen/scene_intro.c, which every program but the tools links. */
+extern const scn_desc scn_intro;
+
 /* Value of track `tr` at time t (ms), clamped into its parameter's range: out[0..arity-1]. */
 void scn_track_value(const scn_desc *d, const scn_track *tr, int32_t t_ms, int32_t out[3]);
 

@@ -24,6 +24,8 @@ typedef struct ps_tok {
     int len;
 } ps_tok;
 
+#define PS_NGLOBALS 5 /* statements of the whole scene (ps_globals) */
+
 typedef struct ps_state {
     const char *path;
     char *err;
@@ -33,7 +35,8 @@ typedef struct ps_state {
     const char *ls; /* start of the current line */
     const char *p;  /* cursor in the current line */
     const char *le; /* end of its content (before a comment) */
-    int have_camera, have_duration;
+    int have_camera;
+    int global_line[PS_NGLOBALS]; /* of each of ps_globals' statements, 0 before it */
     int camera_line;
     int object_line[RT_MAX_OBJECTS], light_line[RT_MAX_LIGHTS], material_line[RT_MAX_MATERIALS];
     int track_line[SCN_MAX_TRACKS], track_col[SCN_MAX_TRACKS]; /* of the latest key */
@@ -610,6 +613,10 @@ static int ps_key(ps_state *ps, ps_tok kw)
     return 0;
 }
 
+/* The statements of the whole scene, each allowed once. */
+static const char *const ps_globals[PS_NGLOBALS] = {"duration", "fps", "depth", "background",
+                                                    "ambient"};
+
 static int ps_statement(ps_state *ps)
 {
     scn_desc *d = &ps->f->desc;
@@ -628,6 +635,13 @@ static int ps_statement(ps_state *ps)
         return ps_object(ps, kw, RT_PLANE);
     if (ps_is(kw, "key"))
         return ps_key(ps, kw);
+    int g = ps_word(kw, ps_globals, PS_NGLOBALS);
+    if (g >= 0) {
+        if (ps->global_line[g])
+            return PS_FAIL(ps, kw.s, "a second '%s' (the first is at line %d)", ps_globals[g],
+                           ps->global_line[g]);
+        ps->global_line[g] = ps->line;
+    }
     if (ps_is(kw, "background") || ps_is(kw, "ambient"))
         return ps_values(ps, kw, ps_is(kw, "ambient") ? SCN_P_AMBIENT : SCN_P_BACKGROUND,
                          ps_is(kw, "ambient") ? d->ambient : d->background) != 0
@@ -639,8 +653,6 @@ static int ps_statement(ps_state *ps)
         int rc = ps_is(kw, "duration") ? ps_time(ps, t, "duration", &d->duration_ms)
             : ps_is(kw, "fps")         ? ps_int(ps, t, "fps", 1, SCN_MAX_FPS, &d->fps)
                                        : ps_int(ps, t, "depth", 0, RT_MAX_DEPTH, &d->depth);
-        if (ps_is(kw, "duration"))
-            ps->have_duration = 1;
         return rc != 0 ? -1 : ps_end(ps);
     }
     return PS_FAIL(ps, kw.s,

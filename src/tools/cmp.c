@@ -5,8 +5,10 @@
 #include <string.h>
 
 #include "image.h"
+#include "knobs.h"
 #include "outpath.h"
 #include "platform.h"
+#include "topt.h"
 
 /* Each channel of the difference picture is |a - b| times this, clamped to 255. */
 #define CMP_DIFF_GAIN 16
@@ -44,12 +46,14 @@ static int cmp_usage(FILE *f)
     fprintf(f,
             "usage: rt-cmp A B [--diff D.png] [--box N]\n"
             "       rt-cmp --oled IMAGE OUT.ppm\n"
+            "       rt-cmp --help | --version\n"
             "Compares two images of equal size (PNG or PPM) and prints one line:\n"
             "psnr_db=<x> max_abs=<n> differing=<n> over8=<n> pixels=<n>\n"
             "--diff D.png writes |A - B| amplified %dx (pure red where a channel is off by "
             "more than 8).\n"
             "--box N: A is N times B's width and height (a supersampled reference) and is\n"
             "box-filtered down to B's size first, each pixel the mean of N x N; N in 1..%d.\n"
+            "Options take their value as --opt value or --opt=value, each at most once.\n"
             "--oled writes IMAGE as the M3 board's OLED shows it in QEMU (its screendump): each\n"
             "pixel at 16 levels of grey (plat_grey4), %dx%d pixels of grey 17 x level.\n",
             CMP_DIFF_GAIN, CMP_BOX_MAX, CMP_OLED_MAGNIFY, CMP_OLED_MAGNIFY);
@@ -98,44 +102,53 @@ static int cmp_oled(const char *in, const char *out)
     return 0;
 }
 
+/* The options, in the grammar of render's (topt.h). */
+enum { CMP_HELP, CMP_VERSION, CMP_DIFF, CMP_BOX, CMP_OLED, CMP_NOPTS };
+static const topt cmp_opts[CMP_NOPTS] = {{"--help", "-h", 0},
+                                         {"--version", NULL, 0},
+                                         {"--diff", NULL, 1},
+                                         {"--box", NULL, 1},
+                                         {"--oled", NULL, 0}};
+
 int main(int argc, char **argv)
 {
-    if (argc >= 2 && strcmp(argv[1], "--oled") == 0) {
-        if (argc != 4) {
-            fprintf(stderr, "rt-cmp: --oled wants IMAGE OUT.ppm (see rt-cmp --help)\n");
-            return 2;
-        }
-        return cmp_oled(argv[2], argv[3]);
-    }
     const char *path[2] = {NULL, NULL}, *diff = NULL;
-    int npath = 0, box = 1;
+    int npath = 0, box = 1, oled = 0;
+    unsigned given = 0;
     for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
-            return cmp_usage(stdout);
-        if (strcmp(argv[i], "--diff") == 0) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "rt-cmp: --diff needs a file name\n");
-                return 2;
-            }
-            diff = argv[++i];
-        } else if (strcmp(argv[i], "--box") == 0) {
-            char *end;
-            long n = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
-            if (i + 1 >= argc || end == argv[i + 1] || *end || n < 1 || n > CMP_BOX_MAX) {
-                fprintf(stderr, "rt-cmp: --box expects a whole number in 1..%d\n", CMP_BOX_MAX);
-                return 2;
+        const char *v;
+        long n;
+        switch (topt_next("rt-cmp", cmp_opts, CMP_NOPTS, argc, argv, &i, &given, &v)) {
+        case TOPT_FAIL: return 2;
+        case CMP_HELP: return cmp_usage(stdout);
+        case CMP_VERSION: topt_version(stdout, "rt-cmp"); return 0;
+        case CMP_DIFF: diff = v; break;
+        case CMP_BOX:
+            if (knobs_number(v, -1, 0, 1, CMP_BOX_MAX, &n) != KNOBS_NUM_OK) {
+                char what[48];
+                snprintf(what, sizeof what, "expected a whole number in 1..%d", CMP_BOX_MAX);
+                return topt_error("rt-cmp", "--box", what, v);
             }
             box = (int)n;
-            i++;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "rt-cmp: unknown option '%s' (see rt-cmp --help)\n", argv[i]);
-            return 2;
-        } else if (npath < 2) {
+            break;
+        case CMP_OLED: oled = 1; break;
+        default:
+            if (npath == 2) {
+                fprintf(stderr, "rt-cmp: too many files: '%s' (%s)\n", argv[i],
+                        oled ? "--oled wants IMAGE OUT.ppm" : "compare two images");
+                return 2;
+            }
             path[npath++] = argv[i];
-        } else {
-            fprintf(stderr, "rt-cmp: too many files: '%s' (compare two images)\n", argv[i]);
+        }
+    }
+    if (oled) {
+        if (npath != 2 || diff || box != 1) {
+            fprintf(stderr,
+                    "rt-cmp: --oled wants IMAGE OUT.ppm and no other option (see rt-cmp "
+                    "--help)\n");
             return 2;
         }
+        return cmp_oled(path[0], path[1]);
     }
     if (npath != 2) {
         fprintf(stderr,

@@ -6,6 +6,7 @@
 
 #include "outpath.h"
 #include "scn_parse.h"
+#include "topt.h"
 
 static const char *sc_name = "rt-scenec";
 
@@ -13,10 +14,13 @@ static void sc_usage(FILE *f)
 {
     fprintf(f,
             "usage: %s SCENE -o OUT.c [--name NAME] [--effects OUT.h]\n"
+            "       %s --help | --version\n"
             "  Compiles a scene file into C: OUT.c defines `const scn_desc NAME` (default\n"
             "  scn_compiled); OUT.h defines RT_COMPILED_EFFECTS, the effects the scene can need\n"
-            "  over its whole timeline, so that a tracer built with it links no other effect.\n",
-            sc_name);
+            "  over its whole timeline, so that a tracer built with it links no other effect.\n"
+            "  -o is short for --output; options take their value as --opt value or\n"
+            "  --opt=value, each at most once.\n",
+            sc_name, sc_name);
 }
 
 /* Writes through a temporary file and a rename: never a half-written output. */
@@ -32,36 +36,40 @@ static FILE *sc_open(const char *path, char *tmp, size_t n)
 static const char *const sc_effect_names[] = {"shadow",  "specular", "reflect",
                                               "refract", "texture",  "noise"};
 
+/* The options, in the grammar of render's (topt.h). */
+enum { SC_HELP, SC_VERSION, SC_OUTPUT, SC_NAME, SC_EFFECTS, SC_NOPTS };
+static const topt sc_opts[SC_NOPTS] = {{"--help", "-h", 0},
+                                       {"--version", NULL, 0},
+                                       {"--output", "-o", 1},
+                                       {"--name", NULL, 1},
+                                       {"--effects", NULL, 1}};
+
 int main(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *hdr = NULL, *name = "scn_compiled";
+    unsigned given = 0;
     for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int takes = !strcmp(a, "-o") || !strcmp(a, "--name") || !strcmp(a, "--effects");
-        if (takes && i + 1 >= argc) {
-            fprintf(stderr, "%s: %s: needs a value\n", sc_name, a);
-            return 2;
-        }
-        if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            sc_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "-o")) {
-            out = argv[++i];
-        } else if (!strcmp(a, "--name")) {
-            name = argv[++i];
+        const char *v;
+        switch (topt_next(sc_name, sc_opts, SC_NOPTS, argc, argv, &i, &given, &v)) {
+        case TOPT_FAIL: return 2;
+        case SC_HELP: sc_usage(stdout); return 0;
+        case SC_VERSION: topt_version(stdout, sc_name); return 0;
+        case SC_OUTPUT: out = v; break;
+        case SC_EFFECTS: hdr = v; break;
+        case SC_NAME:
+            name = v;
             for (const char *c = name; *c; c++)
                 if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || *c == '_' ||
-                      (c > name && *c >= '0' && *c <= '9'))) {
-                    fprintf(stderr, "%s: --name: '%s' is not a C identifier\n", sc_name, name);
-                    return 2;
-                }
-        } else if (!strcmp(a, "--effects")) {
-            hdr = argv[++i];
-        } else if (a[0] == '-' || in) {
-            fprintf(stderr, "%s: %s: unexpected argument (see %s --help)\n", sc_name, a, sc_name);
-            return 2;
-        } else {
-            in = a;
+                      (c > name && *c >= '0' && *c <= '9')))
+                    return topt_error(sc_name, "--name", "expected a C identifier", name);
+            break;
+        default:
+            if (in) {
+                fprintf(stderr, "%s: %s: unexpected argument, a second scene (see %s --help)\n",
+                        sc_name, argv[i], sc_name);
+                return 2;
+            }
+            in = argv[i];
         }
     }
     if (!in || !out) {
