@@ -258,7 +258,7 @@ ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
-ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/arm/arm.c $(GEN)/scene_intro.c
+ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
 ARM_ELFS := $(BUILD)/arm/intro-fixed.elf $(BUILD)/arm/intro-float.elf
 # The cheaper fixed-point variant's image (make arm builds it too; qemu.sh bench fixed16).
 ARM_ELF_FIXED16 := $(BUILD)/arm/intro-fixed16.elf
@@ -294,7 +294,7 @@ $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
 # The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
 # counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o $(BUILD)/obj/arm-$(r)/src/core/probe.o): ARM_COLD_OPT := -Os
+$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o $(BUILD)/obj/arm-$(r)/src/core/probe.o $(BUILD)/obj/arm-$(r)/platform/board.o): ARM_COLD_OPT := -Os
 
 # The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.
 PROFILE_PLUGIN := $(BUILD)/arm/qemu_profile.so
@@ -311,7 +311,7 @@ M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINT
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments
 M3_OBJ := $(BUILD)/obj/m3-fixed
-M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/m3/m3.c $(GEN)/scene_intro.c) \
+M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/m3/m3.c $(GEN)/scene_intro.c) \
            $(M3_OBJ)/start.o
 M3_ELF := $(BUILD)/m3/intro-fixed.elf
 M3_FRAMES ?= 0 425 875
@@ -320,7 +320,7 @@ $(M3_OBJ)/%.o: %.c | $(FIXMATH_STAMP)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(BASE_CFLAGS) $(or $(M3_COLD_OPT),$(OPT)) $(M3_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
 # The command line runs once per command, outside the counted rendering: built for size.
-$(M3_OBJ)/src/app/intro.o $(M3_OBJ)/src/scene/knobs.o: M3_COLD_OPT := -Os
+$(M3_OBJ)/src/app/intro.o $(M3_OBJ)/src/scene/knobs.o $(M3_OBJ)/platform/board.o: M3_COLD_OPT := -Os
 $(M3_OBJ)/start.o: platform/m3/start.S
 	@mkdir -p $(@D)
 	$(ARM_CC) $(M3_ARCH) -c $< -o $@

@@ -163,7 +163,7 @@ AO=$B/obj/arm-fixed
 ARM="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
 if arm-none-eabi-gcc -std=c11 -O2 $ARM -ffreestanding -Iplatform -c tests/arm_fault.c -o "$T/arm_fault.o" &&
    arm-none-eabi-gcc $ARM -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-     -Wl,--no-warn-rwx-segments -o "$T/arm_fault.elf" "$T/arm_fault.o" "$AO/start.o" "$AO/platform/arm/arm.o" -lc -lgcc; then
+     -Wl,--no-warn-rwx-segments -o "$T/arm_fault.elf" "$T/arm_fault.o" "$AO/start.o" "$AO/platform/board.o" "$AO/platform/arm/arm.o" -lc -lgcc; then
   timeout --foreground -k 5 30 qemu-system-arm -M versatilepb -m 2 -display none -serial stdio -monitor none \
     -audiodev none,id=snd0 -global pl041.audiodev=snd0 -semihosting-config enable=on,target=native,arg=fault \
     -kernel "$T/arm_fault.elf" </dev/null >"$T/fault.log" 2>&1

@@ -62,7 +62,7 @@ build_arm() {
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/app/intro.o" "$AO/platform/arm/arm.o" \
+    -Wl,--no-warn-rwx-segments -o "$1" "${objs[@]}" "$AO/src/app/intro.o" "$AO/platform/board.o" "$AO/platform/arm/arm.o" \
     "$AO/start.o" "$AO/libfixmath.a" -lm -lc -lgcc
 }
 arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.exidx)$/ { n += $2 } END { print n }'; }

@@ -16,7 +16,7 @@ _start:
     /* Every word of the stack gets the paint pattern; arm_main finds the deepest overwritten one. */
     ldr     r0, =__stack_bottom
     ldr     r1, =__stack_top
-    ldr     r2, =ARM_STACK_PAINT
+    ldr     r2, =BOARD_STACK_PAINT
 2:  cmp     r0, r1
     strlo   r2, [r0], #4
     blo     2b

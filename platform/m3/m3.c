@@ -13,6 +13,7 @@
  */
 #include <stdint.h>
 
+#include "board.h"
 #include "platform.h"
 
 #define M3_W 128
@@ -77,28 +78,9 @@
 #define M3_PENDSTSET (1u << 26)
 #define M3_SYST_MAX 0xffffffu
 
-/* Semihosting operations (ARM's semihosting specification), trapped by `bkpt 0xab`. */
-enum {
-    M3_SYS_OPEN = 0x01,
-    M3_SYS_CLOSE = 0x02,
-    M3_SYS_WRITE = 0x05,
-    M3_SYS_REMOVE = 0x0e,
-    M3_SYS_RENAME = 0x0f,
-    M3_SYS_GET_CMDLINE = 0x15,
-    M3_SYS_EXIT_EXTENDED = 0x20
-};
-#define M3_OPEN_WB 5                 /* fopen mode "wb" */
-#define M3_EXIT_APPLICATION 0x20026u /* ADP_Stopped_ApplicationExit */
-
-/* From link.ld. */
-extern uint32_t __data_start[], __data_end[], __bss_start[], __bss_end[];
-extern uint32_t __stack_bottom[], __stack_top[];
-extern const char M3_STACK_PAINT[]; /* its address is the paint pattern */
-#define M3_PAINT ((uint32_t)(uintptr_t)M3_STACK_PAINT)
-
 static volatile uint32_t m3_wraps; /* SysTick periods elapsed */
 
-static int m3_semi(uint32_t op, void *arg)
+int board_semi(uint32_t op, void *arg)
 {
     register uint32_t r0 __asm__("r0") = op;
     register void *r1 __asm__("r1") = arg;
@@ -106,39 +88,11 @@ static int m3_semi(uint32_t op, void *arg)
     return (int)r0;
 }
 
-static uint32_t m3_strlen(const char *s)
-{
-    uint32_t n = 0;
-    while (s[n])
-        n++;
-    return n;
-}
-
-static void m3_putc(char c)
+void board_putc(char c)
 {
     while (M3_UART_FR & M3_UART_TXFF)
         ;
     M3_UART_DR = (uint32_t)(unsigned char)c;
-}
-
-static void m3_puts(const char *s)
-{
-    while (*s)
-        m3_putc(*s++);
-}
-
-void plat_log(const char *line)
-{
-    m3_puts(line);
-    m3_putc('\n');
-}
-
-/* Logs "a" + the file name + "b" as one line. */
-static void m3_log_file(const char *a, const char *file, const char *b)
-{
-    m3_puts(a);
-    m3_puts(file);
-    plat_log(b);
 }
 
 /* The SysTick exception (start.S's vector table): one more period of 2^24 steps. */
@@ -215,50 +169,8 @@ static uint32_t m3_band[M3_BAND_ROWS * M3_W];
 static struct {
     int width, height; /* of the frame begun */
     int y0, rows;      /* the band last given out */
-    const char *dest;  /* its name */
-    char tmp[128];     /* dest + ".tmp", written until the frame ends */
 } m3_frame;
-static int m3_fd = -1; /* the frame's PPM: semihosting handle, or -1 */
-
-/* Writes n bytes to a semihosting handle; 0 when all were written. */
-static int m3_write(int fd, const void *buf, uint32_t n)
-{
-    uint32_t a[3] = {(uint32_t)fd, (uint32_t)(uintptr_t)buf, n};
-    return m3_semi(M3_SYS_WRITE, a) == 0 ? 0 : -1;
-}
-
-/* v in decimal at buf; returns the number of digits. */
-static uint32_t m3_dec(char *buf, uint32_t v)
-{
-    char d[10];
-    uint32_t k = 0, n = 0;
-    do {
-        d[k++] = (char)('0' + v % 10);
-        v /= 10;
-    } while (v);
-    while (k)
-        buf[n++] = d[--k];
-    return n;
-}
-
-/* Closes the file of the frame begun; keeps it as dest when ok, else removes it. */
-static int m3_file_end(int ok)
-{
-    if (m3_fd < 0)
-        return 0;
-    uint32_t len = m3_strlen(m3_frame.dest);
-    uint32_t close_args[1] = {(uint32_t)m3_fd};
-    m3_fd = -1;
-    ok &= m3_semi(M3_SYS_CLOSE, close_args) == 0;
-    uint32_t rename_args[4] = {(uint32_t)(uintptr_t)m3_frame.tmp, len + 4,
-                               (uint32_t)(uintptr_t)m3_frame.dest, len};
-    if (ok && m3_semi(M3_SYS_RENAME, rename_args) == 0)
-        return 0;
-    uint32_t remove_args[2] = {(uint32_t)(uintptr_t)m3_frame.tmp, len + 4};
-    m3_semi(M3_SYS_REMOVE, remove_args);
-    m3_log_file("error: ", m3_frame.dest, ": write failed");
-    return -1;
-}
+static board_file m3_file; /* the frame's PPM, while one is written (fd >= 0) */
 
 int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
 {
@@ -266,45 +178,15 @@ int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
         plat_log("error: frames on this board are at most 128x64");
         return -1;
     }
-    m3_file_end(0); /* a frame left unfinished */
+    board_file_end(&m3_file, 0); /* a frame left unfinished */
     m3_frame.width = width;
     m3_frame.height = height;
     m3_frame.y0 = m3_frame.rows = 0;
-    m3_frame.dest = dest;
     f->pixels = m3_band;
     f->width = width;
     f->stride = M3_W;
     f->height = M3_BAND_ROWS < height ? M3_BAND_ROWS : height;
-    if (!dest)
-        return 0;
-    uint32_t len = m3_strlen(dest);
-    if (len + 5 > sizeof m3_frame.tmp) {
-        m3_log_file("error: ", dest, ": path too long");
-        return -1;
-    }
-    for (uint32_t i = 0; i < len; i++)
-        m3_frame.tmp[i] = dest[i];
-    for (uint32_t i = 0; i < 5; i++)
-        m3_frame.tmp[len + i] = ".tmp"[i];
-    uint32_t open_args[3] = {(uint32_t)(uintptr_t)m3_frame.tmp, M3_OPEN_WB, len + 4};
-    m3_fd = m3_semi(M3_SYS_OPEN, open_args);
-    if (m3_fd < 0) {
-        m3_log_file("error: ", m3_frame.tmp, ": cannot create (semihosting open failed)");
-        return -1;
-    }
-    char head[32];
-    uint32_t n = 0;
-    head[n++] = 'P';
-    head[n++] = '6';
-    head[n++] = '\n';
-    n += m3_dec(head + n, (uint32_t)width);
-    head[n++] = ' ';
-    n += m3_dec(head + n, (uint32_t)height);
-    for (const char *s = "\n255\n"; *s; s++)
-        head[n++] = *s;
-    if (m3_write(m3_fd, head, n) != 0)
-        return m3_file_end(0);
-    return 0;
+    return dest ? board_file_open(&m3_file, dest, width, height) : 0;
 }
 
 uint32_t *plat_band_rows(int y0, int rows)
@@ -319,12 +201,12 @@ int plat_band_present(void)
     int y0 = m3_frame.y0, rows = m3_frame.rows, w = m3_frame.width;
     if (rows < 1 || rows > M3_BAND_ROWS || y0 < 0 || y0 + rows > m3_frame.height) {
         plat_log("error: a band outside the frame, or larger than the band memory");
-        m3_file_end(0);
+        board_file_end(&m3_file, 0);
         return -1;
     }
     if (w == M3_W)
         m3_oled_rows(m3_band, M3_W, y0, rows);
-    if (m3_fd >= 0) {
+    if (m3_file.fd >= 0) {
         /* Each row becomes its 3 w bytes of RGB in place (the band has been shown): byte 3 x + 2
          * lies within pixel x, read before it is overwritten. */
         for (int y = 0; y < rows; y++) {
@@ -336,48 +218,14 @@ int plat_band_present(void)
                 rgb[3 * x + 1] = (uint8_t)(v >> 8);
                 rgb[3 * x + 2] = (uint8_t)v;
             }
-            if (m3_write(m3_fd, rgb, (uint32_t)w * 3) != 0)
-                return m3_file_end(0);
+            if (board_file_write(&m3_file, rgb, (uint32_t)w * 3) != 0)
+                return board_file_end(&m3_file, 0);
         }
     }
-    return y0 + rows == m3_frame.height ? m3_file_end(1) : 0;
+    return y0 + rows == m3_frame.height ? board_file_end(&m3_file, 1) : 0;
 }
 
 /* ---- start-up, the end of a run ------------------------------------------------------------ */
-
-/* Logs "ram: ..." with the bytes of .data, .bss and the deepest stack use seen; 1 when the
- * stack reached the bottom of its reserve. */
-static int m3_report_ram(void)
-{
-    const uint32_t *w = __stack_bottom;
-    while (w < __stack_top && *w == M3_PAINT)
-        w++;
-    uint32_t data = (uint32_t)((__data_end - __data_start) * 4);
-    uint32_t bss = (uint32_t)((__bss_end - __bss_start) * 4);
-    uint32_t stack = (uint32_t)((__stack_top - w) * 4);
-    uint32_t v[4] = {data, bss, stack, data + bss + stack};
-    static const char *const names[4] = {"ram: data=", " bss=", " stack_peak=", " total="};
-    for (int i = 0; i < 4; i++) {
-        char d[10];
-        m3_puts(names[i]);
-        for (uint32_t k = 0, n = m3_dec(d, v[i]); k < n; k++)
-            m3_putc(d[k]);
-    }
-    plat_log(" bytes");
-    if (w == __stack_bottom) {
-        plat_log("error: the stack reached the bottom of its reserve (overflow)");
-        return 1;
-    }
-    return 0;
-}
-
-static void m3_exit(int status)
-{
-    uint32_t args[2] = {M3_EXIT_APPLICATION, (uint32_t)status};
-    m3_semi(M3_SYS_EXIT_EXTENDED, args);
-    for (;;)
-        ;
-}
 
 /* Called by start.S's m3_trap for any fault or unexpected exception: logs it and where it
  * happened (the stacked pc), and ends the run with status 3. */
@@ -388,13 +236,7 @@ void m3_fault(uint32_t pc, uint32_t ipsr)
         "thread", "reset", "NMI", "HardFault", "MemManage", "BusFault", "UsageFault", "7",
         "8",      "9",     "10",  "SVCall",    "DebugMon",  "13",       "PendSV",     "SysTick"};
     uint32_t n = ipsr & 0x1ff;
-    m3_puts("error: CPU exception: ");
-    m3_puts(n < 16 ? names[n] : "interrupt");
-    m3_puts(" (pc=0x");
-    for (int i = 28; i >= 0; i -= 4)
-        m3_putc("0123456789abcdef"[(pc >> i) & 15]);
-    plat_log(")");
-    m3_exit(3);
+    board_fault(n < 16 ? names[n] : "interrupt", "pc", pc);
 }
 
 /* 50 MHz from the PLL (8 MHz crystal, 200 MHz / 4), the way the chip's manual orders it. */
@@ -450,30 +292,8 @@ void m3_main(void)
 {
     static char cmdline[256];
     static char *argv[24];
-    int argc = 0, status = 2;
+    m3_file.fd = -1;
     m3_clock_init();
     m3_io_init();
-    uint32_t args[2] = {(uint32_t)(uintptr_t)cmdline, sizeof cmdline};
-    if (m3_semi(M3_SYS_GET_CMDLINE, args) != 0) {
-        plat_log("error: the argument list does not fit in 256 bytes");
-        m3_exit(status);
-    }
-    for (char *s = cmdline; *s;) {
-        while (*s == ' ')
-            *s++ = '\0';
-        if (!*s)
-            break;
-        if (argc == (int)(sizeof argv / sizeof *argv) - 1) {
-            plat_log("error: more than 23 arguments");
-            m3_exit(status);
-        }
-        argv[argc++] = s;
-        while (*s && *s != ' ')
-            s++;
-    }
-    argv[argc] = 0;
-    status = app_main(argc, argv);
-    if (m3_report_ram() != 0 && status == 0)
-        status = 1;
-    m3_exit(status);
+    board_run(cmdline, sizeof cmdline, argv, (int)(sizeof argv / sizeof *argv));
 }

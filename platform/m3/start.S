@@ -48,7 +48,7 @@ m3_reset:
      * overwritten one. */
     ldr     r0, =__stack_bottom
     ldr     r1, =__stack_top
-    ldr     r2, =M3_STACK_PAINT
+    ldr     r2, =BOARD_STACK_PAINT
 3:  cmp     r0, r1
     it      lo
     strlo   r2, [r0], #4
