@@ -171,11 +171,12 @@ real rt_noise(vec3 p)
  * octave doubles the lattice coordinates modulo the period, in integers. */
 static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
 {
-    uint32_t cx = noise_q16(p.x) & NOISE_COORD_MASK, cy = noise_q16(p.y) & NOISE_COORD_MASK,
-             cz = noise_q16(p.z) & NOISE_COORD_MASK;
+    /* the 24-bit lattice coordinates in the top bits of a word: doubling one modulo the period
+     * is a shift that drops the bit going out */
+    uint32_t cx = noise_q16(p.x) << 8, cy = noise_q16(p.y) << 8, cz = noise_q16(p.z) << 8;
     int32_t sum = 0, dots[16];
     for (int o = 0; o < d.octaves; o++) {
-        int32_t n = noise_eval(cx, cy, cz, dots);
+        int32_t n = noise_eval(cx >> 8, cy >> 8, cz >> 8, dots);
         if (absolute && n < 0)
             n = -n;
         if (o == d.octaves - 1 && d.last < RT_NOISE_WEIGHT_ONE) /* the fading octave */
@@ -183,9 +184,7 @@ static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
                  RT_NOISE_WEIGHT_ONE / 2) >>
                 8;
         sum += (n + ((1 << o) >> 1)) >> o; /* amplitude 2^-o, rounded half up */
-        cx = (cx << 1) & NOISE_COORD_MASK;
-        cy = (cy << 1) & NOISE_COORD_MASK;
-        cz = (cz << 1) & NOISE_COORD_MASK;
+        cx <<= 1, cy <<= 1, cz <<= 1;
     }
     if (absolute) /* the octaves left out, at their mean */
         for (int o = d.octaves; o < d.total; o++)
