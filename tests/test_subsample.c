@@ -241,8 +241,9 @@ static int32_t rand_q16(void)
     return (int32_t)((u >> 1) % 65537);
 }
 
-/* Every square size and region (cols w or w + 1, rows h or h + 1), random corner colours: the
- * bytes are the reference formula's, and nothing outside the region is written. */
+/* Every square size and region (cols w or w + 1, rows h or h + 1), random corner colours (and
+ * some with one colour, equal rows or equal columns): the bytes are the reference formula's,
+ * and nothing outside the region is written. */
 static void test_interpolate_exact(void **state)
 {
     (void)state;
@@ -276,6 +277,13 @@ static void test_interpolate_exact(void **state)
                         k[n] = v3(f[0], f[1], f[2]);
 #endif
                     }
+                    /* one colour, equal rows, equal columns: the fill's shortcuts */
+                    static const int same[3][4] = {{0, 0, 0, 0}, {0, 0, 2, 2}, {0, 1, 0, 1}};
+                    if (trial < 3)
+                        for (int n = 1; n < 4; n++) {
+                            k[n] = k[same[trial][n]];
+                            memcpy(c[n], c[same[trial][n]], sizeof c[n]);
+                        }
                     for (int i = 0; i < S * S; i++)
                         got[i] = want[i] = 0xDEADBEEF;
                     ref_fill(want, S, w, h, cols, rows, c);

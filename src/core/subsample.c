@@ -99,6 +99,9 @@ static int32_t ss_mul(int32_t d, int32_t t)
     return d < 0 ? -q : q;
 }
 
+/* ss_mul(d, 1/2): d / 2 rounded half away from zero ((|d| 2^15 + 2^15) >> 16 = (|d| + 1) >> 1). */
+static int32_t ss_half(int32_t d) { return d < 0 ? -((1 - d) >> 1) : (d + 1) >> 1; }
+
 /* The byte of a channel v (Q16.16) is ss_byte(v): v clamped to [0, 65536] and rounded as
  * r_to_byte does, (v 255 + 2^15) >> 16. The fill keeps each channel as V = v 255 + 2^15
  * instead (SS_V): for -128 <= v <= 65664, V lies in [128, 2^24 - 128], and its bits 16..23
@@ -109,7 +112,7 @@ static int32_t ss_mul(int32_t d, int32_t t)
 
 static uint32_t ss_pack(int32_t r, int32_t g, int32_t b)
 {
-    return ((uint32_t)r & 0xFF0000u) | ((uint32_t)g >> 8 & 0xFF00u) | (uint32_t)b >> 16;
+    return ((uint32_t)r & 0xFF0000u) | ((uint32_t)g >> 16) << 8 | (uint32_t)b >> 16;
 }
 
 /* The pixel of a colour in [0, 1] as the fill gives a corner: ss_byte of each channel's
@@ -136,6 +139,34 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         q[3 * n] = r_unit_to_q16(k[n]->x);
         q[3 * n + 1] = r_unit_to_q16(k[n]->y);
         q[3 * n + 2] = r_unit_to_q16(k[n]->z);
+    }
+    if (w == 2 && h == 2 && cols == 2 && rows == 2) {
+        /* The usual leaf, a 2x2 square without the frame's last column or row: every weight
+         * is 1/2, and ss_mul(d, 1/2) is ss_half(d). The same values as the rows below. */
+        int32_t v[4][3];
+        for (int ch = 0; ch < 3; ch++) {
+            int32_t a = q[ch], l = a + ss_half(q[6 + ch] - a);
+            int32_t r = q[3 + ch] + ss_half(q[9 + ch] - q[3 + ch]);
+            v[0][ch] = SS_V(a);
+            v[1][ch] = SS_V(a + ss_half(q[3 + ch] - a));
+            v[2][ch] = SS_V(l);
+            v[3][ch] = SS_V(l + ss_half(r - l));
+        }
+        dst[0] = ss_pack(v[0][0], v[0][1], v[0][2]);
+        dst[1] = ss_pack(v[1][0], v[1][1], v[1][2]);
+        dst[stride] = ss_pack(v[2][0], v[2][1], v[2][2]);
+        dst[stride + 1] = ss_pack(v[3][0], v[3][1], v[3][2]);
+        return;
+    }
+    if (q[0] == q[3] && q[0] == q[6] && q[0] == q[9] && q[1] == q[4] && q[1] == q[7] &&
+        q[1] == q[10] && q[2] == q[5] && q[2] == q[8] && q[2] == q[11]) {
+        /* One colour (dark or empty parts of a frame): every l, r the rows below compute is
+         * that colour and every step 0, so each of the pixels (columns 0..cols-1) gets it. */
+        uint32_t px = ss_pack(SS_V(q[0]), SS_V(q[1]), SS_V(q[2]));
+        for (int j = 0; j < rows; j++, dst += stride)
+            for (int i = 0; i < cols; i++)
+                dst[i] = px;
+        return;
     }
     const uint16_t *wy = ss_wq[h];
     int32_t sx = ss_wq[w][1];
@@ -254,35 +285,23 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
         ss_probe_new(c, xm, ym, 4, k, tx, ty, w > h ? w : h);
 }
 
-/* The pixels of a split square of 1 or 2 by 1 or 2 pixels (x0, y0, w, h; sm: its (0, 0) in the
- * lattice) are those of its unit squares, each with every corner traced: what ss_square would
- * do for each of them in turn, without the calls. Unit square (i, j) traces its corners in
- * ss_square's order and shows its (0, 0) as the fill does a corner (ss_pixel); where it ends
- * the frame, its right and bottom neighbours as traced points (rt_color_pixel) and its (1, 1)
- * again as the fill's corner. */
-static void ss_units(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, int own_r, int own_b)
+/* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
+ * four unit squares would do in ss_square, without the calls. They trace the five points
+ * between the corners, in this order, and each shows its (0, 0) as the fill shows a corner. */
+static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
 {
     const int ls = c->lstride, stride = c->stride;
     uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
-    for (int j = 0; j < h; j++, sm += ls, row += stride) {
-        int b = j == h - 1 && own_b;
-        for (int i = 0; i < w; i++) {
-            rt_sample *p = sm + i;
-            int x = x0 + i, y = y0 + j;
-            ss_need(c, x, y, p);
-            ss_need(c, x + 1, y, p + 1);
-            ss_need(c, x, y + 1, p + ls);
-            ss_need(c, x + 1, y + 1, p + ls + 1);
-            row[i] = ss_pixel(&p->color);
-            if (i == w - 1 && own_r) {
-                row[i + 1] = rt_color_pixel(p[1].color);
-                if (b)
-                    row[stride + i + 1] = ss_pixel(&p[ls + 1].color);
-            }
-            if (b)
-                row[stride + i] = rt_color_pixel(p[ls].color);
-        }
-    }
+    rt_sample *m = sm + ls;
+    ss_need(c, x0 + 1, y0, sm + 1);
+    ss_need(c, x0, y0 + 1, m);
+    ss_need(c, x0 + 1, y0 + 1, m + 1);
+    ss_need(c, x0 + 2, y0 + 1, m + 2);
+    ss_need(c, x0 + 1, y0 + 2, m + ls + 1);
+    row[0] = ss_pixel(&sm->color);
+    row[1] = ss_pixel(&sm[1].color);
+    row[stride] = ss_pixel(&m->color);
+    row[stride + 1] = ss_pixel(&m[1].color);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
@@ -310,8 +329,8 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k);
-            if (w >= 1 && w <= 2 && h >= 1 && h <= 2) { /* unit squares only */
-                ss_units(c, sm, x0, y0, w, h, own_r, own_b);
+            if (w == 2 && h == 2 && !own_r && !own_b) {
+                ss_quad(c, sm, x0, y0);
                 return;
             }
             int xs[3] = {0, w, w}, ys[3] = {0, h, h};
@@ -408,7 +427,12 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                     row[0] = row[prev_w];
                 else
                     row[0].nhits = 0;
-                for (rt_sample *q = row + 1, *e = row + w; q <= e; q++)
+                rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
+                for (; q < e; q += 2) {
+                    q[0].nhits = 0;
+                    q[1].nhits = 0;
+                }
+                if (q == e)
                     q->nhits = 0;
             }
             if (prev_w < 0) {
