@@ -306,10 +306,9 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
  * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
- * right column and bottom row where it ends the frame (own_r, own_b). Every pixel is thus
- * written once, whatever the order. */
-static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, int level, int own_r,
-                      int own_b)
+ * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
+ * thus written once, whatever the order. */
+static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, int level, int own)
 {
     const int ls = c->lstride;
     rt_sample *k2 = sm + h * ls;
@@ -329,24 +328,29 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k);
-            if (w == 2 && h == 2 && !own_r && !own_b) {
+            if (w == 2 && h == 2 && !own) {
                 ss_quad(c, sm, x0, y0);
                 return;
             }
-            int xs[3] = {0, w, w}, ys[3] = {0, h, h};
-            if (nx == 2)
-                xs[1] = w / 2;
-            if (ny == 2)
-                ys[1] = h / 2;
-            for (int j = 0; j < ny; j++)
-                for (int i = 0; i < nx; i++)
-                    ss_square(c, sm + ys[j] * ls + xs[i], x0 + xs[i], y0 + ys[j], xs[i + 1] - xs[i],
-                              ys[j + 1] - ys[j], level + 1, i == nx - 1 && own_r,
-                              j == ny - 1 && own_b);
+            int hw = w / 2, hh = h / 2;
+            if (nx == 2 && ny == 2) { /* the four halves, row by row */
+                rt_sample *sb = sm + hh * ls;
+                ss_square(c, sm, x0, y0, hw, hh, level + 1, 0);
+                ss_square(c, sm + hw, x0 + hw, y0, w - hw, hh, level + 1, own & 1);
+                ss_square(c, sb, x0, y0 + hh, hw, h - hh, level + 1, own & 2);
+                ss_square(c, sb + hw, x0 + hw, y0 + hh, w - hw, h - hh, level + 1, own);
+            } else if (nx == 2) { /* left and right halves of a square 0 or 1 high */
+                ss_square(c, sm, x0, y0, hw, h, level + 1, own & 2);
+                ss_square(c, sm + hw, x0 + hw, y0, w - hw, h, level + 1, own);
+            } else { /* top and bottom halves of a square 0 or 1 wide */
+                rt_sample *sb = sm + hh * ls;
+                ss_square(c, sm, x0, y0, w, hh, level + 1, own & 1);
+                ss_square(c, sb, x0, y0 + hh, w, h - hh, level + 1, own);
+            }
             return;
         }
     }
-    int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
+    int cols = w + (own & 1), rows = h + (own >> 1 & 1);
     uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
     const rt_color *const kc[4] = {&sm->color, &sm[w].color, &k2->color, &k2[w].color};
     ss_fill(dst, c->stride, w, h, cols, rows, kc);
@@ -401,7 +405,9 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
     rt_sample *top = work, *bot = top + ncols + 1;
-    c.lat = bot + ncols + 1;
+    rt_sample *const lat = bot + ncols + 1;
+    const int ls = c.lstride;
+    c.lat = lat;
     if (r0 % 2) {
         top = bot;
         bot = work;
@@ -419,8 +425,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         for (int i = 0; i < ncols; i++) {
             int x0 = ss_corner(i, g, width), w = ss_corner(i + 1, g, width) - x0;
             c.sx = x0;
-            for (int ly = 0; ly <= h; ly++) {
-                rt_sample *row = c.lat + ly * c.lstride;
+            rt_sample *row = lat, *hrow = lat + h * ls; /* the lattice's rows 0 and h */
+            for (int ly = 0; ly <= h; ly++, row += ls) {
                 /* The left edge is the square before's right edge: keep what it traced (its
                  * corners too: they are top[i] and bot[i], copied there before). */
                 if (prev_w >= 0 && row[prev_w].nhits)
@@ -436,12 +442,12 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                     q->nhits = 0;
             }
             if (prev_w < 0) {
-                c.lat[0] = top[i];
-                c.lat[h * c.lstride] = bot[i];
+                lat[0] = top[i];
+                hrow[0] = bot[i];
             }
-            c.lat[w] = top[i + 1];
-            c.lat[h * c.lstride + w] = bot[i + 1];
-            ss_square(&c, c.lat, x0, y0, w, h, 0, i == ncols - 1, r == nrows - 1);
+            lat[w] = top[i + 1];
+            hrow[w] = bot[i + 1];
+            ss_square(&c, lat, x0, y0, w, h, 0, (i == ncols - 1) | (r == nrows - 1) << 1);
             prev_w = w;
         }
         rt_sample *t = top;
