@@ -122,6 +122,18 @@ static uint32_t ss_pixel(const rt_color *c)
     return ss_pack(SS_V(r_unit_to_q16(c->x)), SS_V(r_unit_to_q16(c->y)), SS_V(r_unit_to_q16(c->z)));
 }
 
+/* One channel of a 2x2 fill (ss_fill's rows for w = h = 2, where every weight is 1/2): corners
+ * a (0, 0), b (2, 0), c (0, 2), d (2, 2); the bytes of pixels (0, 0), (1, 0), (0, 1) and (1, 1),
+ * shifted left by sh, are or'ed into p[0..3]. */
+static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh, uint32_t p[4])
+{
+    int32_t l = a + ss_half(c - a), r = b + ss_half(d - b);
+    p[0] |= (uint32_t)SS_V(a) >> 16 << sh;
+    p[1] |= (uint32_t)SS_V(a + ss_half(b - a)) >> 16 << sh;
+    p[2] |= (uint32_t)SS_V(l) >> 16 << sh;
+    p[3] |= (uint32_t)SS_V(l + ss_half(r - l)) >> 16 << sh;
+}
+
 /* Bilinear fill of `cols` x `rows` pixels from dst (cols <= w + 1, rows <= h + 1) from the
  * colours of the corners k[]: (0, 0), (w, 0), (0, h), (w, h), each in [0, 1]. Row j's ends are
  * l = k0 + ss_mul(k2 - k0, j / h) and r = k1 + ss_mul(k3 - k1, j / h) (k2 and k3 themselves in
@@ -143,19 +155,13 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
     if (w == 2 && h == 2 && cols == 2 && rows == 2) {
         /* The usual leaf, a 2x2 square without the frame's last column or row: every weight
          * is 1/2, and ss_mul(d, 1/2) is ss_half(d). The same values as the rows below. */
-        int32_t v[4][3];
-        for (int ch = 0; ch < 3; ch++) {
-            int32_t a = q[ch], l = a + ss_half(q[6 + ch] - a);
-            int32_t r = q[3 + ch] + ss_half(q[9 + ch] - q[3 + ch]);
-            v[0][ch] = SS_V(a);
-            v[1][ch] = SS_V(a + ss_half(q[3 + ch] - a));
-            v[2][ch] = SS_V(l);
-            v[3][ch] = SS_V(l + ss_half(r - l));
-        }
-        dst[0] = ss_pack(v[0][0], v[0][1], v[0][2]);
-        dst[1] = ss_pack(v[1][0], v[1][1], v[1][2]);
-        dst[stride] = ss_pack(v[2][0], v[2][1], v[2][2]);
-        dst[stride + 1] = ss_pack(v[3][0], v[3][1], v[3][2]);
+        uint32_t p[4] = {0, 0, 0, 0};
+        for (int ch = 0; ch < 3; ch++)
+            ss_quad_ch(q[ch], q[3 + ch], q[6 + ch], q[9 + ch], 16 - 8 * ch, p);
+        dst[0] = p[0];
+        dst[1] = p[1];
+        dst[stride] = p[2];
+        dst[stride + 1] = p[3];
         return;
     }
     if (q[0] == q[3] && q[0] == q[6] && q[0] == q[9] && q[1] == q[4] && q[1] == q[7] &&
