@@ -638,6 +638,9 @@ for scale in 1 1.5625; do
       bad="$bad $v scale $scale: $st;"
     grep -q '^fx_overflow=0$' <<<"$st" && grep -q '^fx_domain=0$' <<<"$st" || bad="$bad $v scale $scale: numeric events;"
   done
+  # the release build (unchecked products, r_mul_round_in's one-sum form) gives san-fixed's bytes
+  $B/rt-fixed render --scene "$T/checker-$scale.scene" --size 64x48 -o "$T/checker-$scale-rel.png" >/dev/null 2>&1 &&
+    cmp -s "$T/checker-$scale-rel.png" "$T/checker-$scale-san-fixed.png" || bad="$bad rt-fixed scale $scale differs from san-fixed;"
   line=$($B/rt-cmp "$T/checker-$scale-san-fixed.png" "$T/checker-$scale-san-float.png" 2>&1)
   awk -v p="$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")" 'BEGIN { exit !(p == "inf" || p >= 40) }' || bad="$bad scale $scale: $line;"
 done

@@ -277,7 +277,7 @@ static void test_interpolate_exact(void **state)
                         k[n] = v3(f[0], f[1], f[2]);
 #endif
                     }
-                    /* one colour, equal rows, equal columns: the fill's shortcuts */
+                    /* inputs: one colour (the fill's shortcut), equal rows, equal columns */
                     static const int same[3][4] = {{0, 0, 0, 0}, {0, 0, 2, 2}, {0, 1, 0, 1}};
                     if (trial < 3)
                         for (int n = 1; n < 4; n++) {
@@ -455,6 +455,138 @@ static void test_reflected_outline(void **state)
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
             assert_int_equal(full[y][x].hits[0].object, 0); /* the sphere is not seen directly */
+}
+
+/* ---- the adaptive recursion against a plain reference ------------------------------------ */
+
+/* The thesis' recursion written plainly over samples traced at every pixel (full[][]): corners
+ * every g pixels, a square halved while rt_corners_differ finds a reason, a leaf filled by
+ * rt_interpolate over the pixels it owns, where points known before on its top row and left
+ * column show their traced colour. Known: traced within this grid square, its grid corners, and
+ * its left side as the square before in the row left it (the points a square of the row above
+ * traced on the shared side are not kept: the lattice holds one grid square). rt_render_adaptive's bookkeeping (corner rows, the lattice and what it keeps
+ * from the square before, the 2x2 and one-colour shortcuts) must give exactly these pixels and
+ * this set of traced points. */
+static uint32_t refpx[H * W];
+static uint8_t refused[H * W], refknown[H * W];
+
+static int ref_corner(int i, int g, int n)
+{
+    int c = i * g;
+    return c < n - 1 ? c : n - 1;
+}
+
+static void ref_square(int wi, int x0, int y0, int w, int h, int own_r, int own_b, int thr8)
+{
+    const rt_sample *k[4] = {&full[y0][x0], &full[y0][x0 + w], &full[y0 + h][x0],
+                             &full[y0 + h][x0 + w]};
+    const int at[4] = {y0 * wi + x0, y0 * wi + x0 + w, (y0 + h) * wi + x0, (y0 + h) * wi + x0 + w};
+    for (int i = 0; i < 4; i++)
+        refused[at[i]] = refknown[at[i]] = 1;
+    if ((w > 1 || h > 1) && rt_corners_differ(k, thr8) != RT_SPLIT_NONE) {
+        int xs[3] = {x0, x0 + w, x0 + w}, ys[3] = {y0, y0 + h, y0 + h}, nx = 1, ny = 1;
+        if (w >= 2) {
+            xs[1] = x0 + w / 2;
+            nx = 2;
+        }
+        if (h >= 2) {
+            ys[1] = y0 + h / 2;
+            ny = 2;
+        }
+        for (int j = 0; j < ny; j++)
+            for (int i = 0; i < nx; i++)
+                ref_square(wi, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j],
+                           i == nx - 1 && own_r, j == ny - 1 && own_b, thr8);
+        return;
+    }
+    int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
+    uint32_t *dst = refpx + y0 * wi + x0;
+    rt_interpolate(dst, wi, w, h, cols, rows, k[0]->color, k[1]->color, k[2]->color, k[3]->color);
+    /* points known before, on the top row and left column, show their traced colour */
+    for (int i = 1; i < cols; i++)
+        if (refknown[y0 * wi + x0 + i])
+            dst[i] = rt_color_pixel(full[y0][x0 + i].color);
+    for (int j = 1; j < rows; j++)
+        if (refknown[(y0 + j) * wi + x0])
+            dst[j * wi] = rt_color_pixel(full[y0 + j][x0].color);
+}
+
+static void test_adaptive_reference(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    int mf = add_material(&s,
+                          (rt_material){.diffuse = vd(0.5, 0.45, 0.4),
+                                        .ambient = from_d(0.5),
+                                        .reflect = from_d(0.4)});
+    int mr = add_material(&s,
+                          (rt_material){.diffuse = vd(0.9, 0.2, 0.1),
+                                        .ambient = from_d(0.5),
+                                        .specular = from_d(0.8),
+                                        .shininess = 40});
+    int mm = add_material(&s,
+                          (rt_material){.diffuse = vd(0.1, 0.1, 0.1),
+                                        .ambient = from_d(0.3),
+                                        .reflect = from_d(0.8)});
+    add_floor(&s, mf);
+    add_sphere(&s, mr, -1.2, 1.0, -1, 1.0);
+    add_sphere(&s, mm, 1.3, 0.8, 0.5, 0.8);
+    add_sphere(&s, mr, 0.2, 0.3, 2.0, 0.3);
+    s.lights[1] = (rt_light){vd(-6, 4, 3), vd(0.5, 0.4, 0.3)};
+    s.nlights = 2;
+    s.camera = (rt_camera){vd(0.5, 2.5, 7), vd(0, 0.6, 0), vd(0, 1, 0), from_d(50)};
+    rt_scene_prepare(&s);
+    const int sizes[][2] = {{W, H}, {W - 1, H - 1}, {37, 29}, {17, 33}, {61, 5}, {3, 3}};
+    const int grids[] = {2, 4, 8, 16};
+    long pixels = 0, used = 0;
+    for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
+        int w = sizes[n][0], h = sizes[n][1];
+        rt_view v;
+        rt_view_init(&v, &s.camera, w, h);
+        const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL};
+        rt_stats st = {0};
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++)
+                rt_trace_pixel(&s, &v, &pf, x, y, &st, &full[y][x]);
+        for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
+            const rt_params pa = {.depth = s.depth,
+                                  .mode = RT_MODE_ADAPTIVE,
+                                  .grid = grids[g],
+                                  .threshold = TS_THRESHOLD,
+                                  .min_contrib = 0};
+            int gr = grids[g], thr8 = r_to_byte(pa.threshold);
+            int ncols = w > 1 ? (w - 1 + gr - 1) / gr : 1,
+                nrows = h > 1 ? (h - 1 + gr - 1) / gr : 1;
+            memset(refused, 0, sizeof refused);
+            memset(refknown, 0, sizeof refknown);
+            for (int r = 0; r < nrows; r++)
+                for (int i = 0; i < ncols; i++) {
+                    int x0 = ref_corner(i, gr, w), y0 = ref_corner(r, gr, h);
+                    int x1 = ref_corner(i + 1, gr, w), y1 = ref_corner(r + 1, gr, h);
+                    for (int y = y0; y <= y1; y++)
+                        for (int x = i > 0 ? x0 + 1 : x0; x <= x1; x++)
+                            refknown[y * w + x] = 0;
+                    ref_square(w, x0, y0, ref_corner(i + 1, gr, w) - x0,
+                               ref_corner(r + 1, gr, h) - y0, i == ncols - 1, r == nrows - 1, thr8);
+                }
+            assert_true(rt_render_work_size(&pa, w) <= sizeof work);
+            rt_render(&s, &v, &pa, adpx, w, &st, work, traced);
+            for (int i = 0; i < w * h; i++) {
+                if (adpx[i] != refpx[i] || (traced[i] != 0) != refused[i])
+                    fail_msg("%dx%d grid %d: pixel (%d, %d) is %06x traced %d, the plain "
+                             "recursion's %06x traced %d",
+                             w, h, gr, i % w, i / w, (unsigned)adpx[i], traced[i],
+                             (unsigned)refpx[i], refused[i]);
+                used += refused[i];
+            }
+            pixels += w * h;
+        }
+    }
+    /* the scene has edges of every kind: a good share of the points is traced */
+    assert_true(used * 10 > pixels);
+    print_message("adaptive recursion: %ld pixels (%ld traced) equal to the plain recursion's\n",
+                  pixels, used);
 }
 
 /* ---- probe mode ----------------------------------------------------------------------------- */
@@ -773,6 +905,7 @@ int main(void)
         cmocka_unit_test(test_bands),
         cmocka_unit_test(test_bands_into),
         cmocka_unit_test(test_min_contrib),
+        cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),
         cmocka_unit_test(test_probe_reflected_edge),

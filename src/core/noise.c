@@ -260,7 +260,8 @@ vec3 rt_palette(int id, real t)
     real f = r_floor_split(r_muli(t, NOISE_STOPS - 1), &seg);
     if (seg >= NOISE_STOPS - 1)
         return pal[NOISE_STOPS - 1];
-    /* a + (b - a) f, colours and f in [0, 1]: in range, so formed without range checks */
+    /* a + (b - a) f: a and f in [0, 1], b - a in [-1, 1]; in range, so formed without range
+     * checks */
     vec3 a = pal[seg];
     return c3_madd(a, v3_sub(pal[seg + 1], a), f);
 }

@@ -102,8 +102,8 @@ static int32_t ss_mul(int32_t d, int32_t t)
 /* ss_mul(d, 1/2): d / 2 rounded half away from zero ((|d| 2^15 + 2^15) >> 16 = (|d| + 1) >> 1). */
 static int32_t ss_half(int32_t d) { return d < 0 ? -((1 - d) >> 1) : (d + 1) >> 1; }
 
-/* The byte of a channel v (Q16.16) is ss_byte(v): v clamped to [0, 65536] and rounded as
- * r_to_byte does, (v 255 + 2^15) >> 16. The fill keeps each channel as V = v 255 + 2^15
+/* The byte of a channel v (Q16.16) is r_to_byte's: v clamped to [0, 65536], then
+ * (v 255 + 2^15) >> 16. The fill keeps each channel as V = v 255 + 2^15
  * instead (SS_V): for -128 <= v <= 65664, V lies in [128, 2^24 - 128], and its bits 16..23
  * are that byte (v <= 0: V < 2^16, so 0; v >= 65536: V >= 255 2^16, so 255; else the formula
  * itself), so a pixel is three masks and shifts (ss_pack), with no clamp. Every V the fill
@@ -115,7 +115,7 @@ static uint32_t ss_pack(int32_t r, int32_t g, int32_t b)
     return ((uint32_t)r & 0xFF0000u) | ((uint32_t)g >> 16) << 8 | (uint32_t)b >> 16;
 }
 
-/* The pixel of a colour in [0, 1] as the fill gives a corner: ss_byte of each channel's
+/* The pixel of a colour in [0, 1] as the fill gives a corner: r_to_byte of each channel's
  * r_unit_to_q16 (rt_color_pixel's, in the fixed-point build). */
 static uint32_t ss_pixel(const rt_color *c)
 {

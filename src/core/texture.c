@@ -10,8 +10,9 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real fo
     if (tx->kind == RT_TEX_NONE)
         return m->diffuse;
 
-    /* q = p * scale has |q| <= 20000 (the parser bounds the texture scale by the farthest point
-     * the material can be seen at): the products need no range check (docs/numerics.md) */
+    /* q = p * scale has |q| <= 20000 for noise textures and 32000 for the checker (the parser
+     * bounds the texture scale by the farthest point the material can be seen at): the products
+     * need no range check (docs/numerics.md) */
     if (tx->kind == RT_TEX_CHECKER) {
         /* Cells are centred on lattice points, so the faces of cells lie at half-integers and
          * a plane through the origin never sits on a boundary: the cell is floor(q + 1/2). */
