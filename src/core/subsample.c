@@ -39,7 +39,7 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
         if (k[i]->hits[0].object != a->hits[0].object || k[i]->cell != a->cell)
             return RT_SPLIT_OBJECT;
     for (int i = 1; i < 4; i++)
-        if (memcmp(k[i]->light_state, a->light_state, sizeof a->light_state) != 0)
+        if (k[i]->lights != a->lights)
             return RT_SPLIT_LIGHT;
     int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
     for (int i = 1; i < 4; i++) {
@@ -193,10 +193,19 @@ typedef struct ss_ctx {
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
-static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
+/* Shades the point (x, y) in full into *out (in probe mode from the primary hit a probe found,
+ * *pri, if not NULL), clamps its colour, marks it, and in probe mode sets its flags. */
+static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
-    rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
-    out->probed = 0;
+    if (RT_COMPILED_PROBE && pri) {
+        rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
+        out->flags = (uint8_t)rt_probe_opaque(c->scene, out);
+    } else {
+        rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
+        out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
+            ? (uint8_t)rt_probe_opaque(c->scene, out)
+            : 0;
+    }
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
@@ -205,6 +214,8 @@ static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
     if (c->traced)
         __atomic_store_n(&c->traced[(long)y * c->view->width + x], 1, __ATOMIC_RELAXED);
 }
+
+static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out) { ss_shade(c, x, y, out, NULL); }
 
 /* The sample at pixel (x, y) of the current square, traced on first use. */
 static const rt_sample *ss_at(ss_ctx *c, int x, int y)
@@ -220,37 +231,40 @@ static const rt_sample *ss_at(ss_ctx *c, int x, int y)
  * before is kept: it got its record from the same context (the ends of its edge), so the frame
  * does not depend on the order squares are visited in. */
 static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
-                                                   const rt_sample *const k[], real tx, real ty,
+                                                   const rt_sample *const k[],
+                                                   enum rt_split_reason why, real tx, real ty,
                                                    int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
     if (sm->nhits)
         return;
-    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, span,
-                       sm)) {
+    rt_primary pri;
+    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, why, tx, ty,
+                       span, &pri, sm)) {
         if (c->traced)
             __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
-    } else {
-        ss_trace(c, x, y, sm);
+        return;
     }
+    ss_shade(c, x, y, sm, &pri); /* in full, from the primary hit if the probe found it */
 }
 
 /* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
  * corners): the middles of the edges it halves, each against the ends of its edge, and the
  * centre against the four corners. */
 static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
-                                                     int nx, int ny, const rt_sample *const k[4])
+                                                     int nx, int ny, const rt_sample *const k[4],
+                                                     enum rt_split_reason why)
 {
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
     int xm = x0 + w / 2, ym = y0 + h / 2;
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
-        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, tx, 0, w);
+        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
     for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
         const rt_sample *kk[2] = {k[i], k[i + 2]};
-        ss_probe_new(c, x0 + i * w, ym, 2, kk, ty, 0, h);
+        ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
     }
     if (nx == 2 && ny == 2)
-        ss_probe_new(c, xm, ym, 4, k, tx, ty, w > h ? w : h);
+        ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the
@@ -278,7 +292,7 @@ static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int ow
                 ny = 2;
             }
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
-                ss_probe_split(c, x0, y0, w, h, nx, ny, k);
+                ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
             for (int j = 0; j < ny; j++)
                 for (int i = 0; i < nx; i++)
                     ss_square(c, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j], level + 1,
