@@ -133,18 +133,22 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
     if (!m)
         return 0; /* something new */
 
-    /* 2. The whole record (every light's state, the ray tree) where the context disagrees on
-     * a light (a shadow or highlight edge crosses it) or the surface casts secondary rays (what
-     * they meet can change anywhere); elsewhere the matching sample's record is the point's. */
+    /* 2. The light states where the context disagrees on a light (a shadow or highlight edge
+     * crosses it), the ray tree where the surface casts secondary rays (what they meet can
+     * change anywhere) unless the context is an edge whose ends have one record; elsewhere the
+     * matching sample's record is the point's. */
     const rt_sample *f = k[probe_first(m)];
-    int deep = f->nhits > 1;
+    int lights = 0;
     for (int i = 0; i < n; i++)
-        deep |= k[i]->lights != f->lights;
+        lights |= k[i]->lights != f->lights;
+    int deep = lights || (f->nhits > 1 && !(n == 2 && m == 3u && probe_same_tree(k[0], k[1])));
     if (deep) {
         /* Its rays beyond the primary one are the probe's: moved to probe_shadow and
          * probe_secondary (their object tests stay in shadow_tests). */
         uint32_t sh = st->rays_shadow, rl = st->rays_reflect, rr = st->rays_refract;
-        rt_probe_pixel(s, v, p, x, y, 1, pri, st, out);
+        rt_probe_pixel(s, v, p, x, y, lights ? RT_PROBE_WHOLE : RT_PROBE_TREE, pri, st, out);
+        if (!lights)
+            out->lights = f->lights;
         st->probe_shadow += st->rays_shadow - sh;
         st->probe_secondary += (st->rays_reflect - rl) + (st->rays_refract - rr);
         st->rays_shadow = sh;

@@ -302,10 +302,15 @@ typedef struct rt_primary {
 } rt_primary;
 #define RT_PRIMARY_UNKNOWN (-2)
 
+/* What rt_probe_pixel finds beyond the primary hit (`whole`). */
+#define RT_PROBE_WHOLE 1 /* the ray tree and the light states */
+#define RT_PROBE_TREE 2  /* the ray tree alone */
+
 /* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
- * its cost. With `whole`: nhits, each stored node's object and level and the primary hit's
- * light states (nearest hits along the same ray tree, shadow rays at the primary hit only; cell
- * 0); without: the primary object and its checker cell alone (nhits = 1, light states 0).
+ * its cost. With `whole` RT_PROBE_WHOLE: nhits, each stored node's object and level and the
+ * primary hit's light states (nearest hits along the same ray tree, shadow rays at the primary
+ * hit only; cell 0); RT_PROBE_TREE: the same without light states (0, no shadow ray); 0: the
+ * primary object and its checker cell alone (nhits = 1, light states 0).
  * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
  * *pri: with id RT_PRIMARY_UNKNOWN the primary ray is traced and *pri gets it; otherwise *pri is
  * taken as the pixel's (a probe of the same pixel found it). Counts the rays it casts beyond the

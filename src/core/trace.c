@@ -14,7 +14,9 @@ typedef struct trace_ctx {
     /* How the primary ray finds its hit: 0 rt_nearest_but, 1 rt_nearest_primary (the view's eye
      * is the prepared one, eye_at), 2 through `pri` (trace_first) */
     int eye_prepared;
-    int probe;       /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record */
+    /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record, 3 the record
+     * without light states */
+    int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
 } trace_ctx;
 
@@ -202,7 +204,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         c->sample->cell = cell;
     rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
     trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
-    int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
+    int nlights = TRACE_PROBE(c) && (level > 0 || c->probe == 3) ? 0 : s->nlights;
     unsigned lights = 0;
     for (int i = 0; i < nlights; i++)
         lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
@@ -304,6 +306,6 @@ void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     int whole, rt_primary *pri, rt_stats *stats, rt_sample *out)
 {
-    trace_point_pri(s, v, p, x, y, stats, out, whole ? 2 : 1, pri);
+    trace_point_pri(s, v, p, x, y, stats, out, whole == RT_PROBE_TREE ? 3 : whole ? 2 : 1, pri);
 }
 #endif
