@@ -10,6 +10,17 @@ static int probe_agree(int n, const rt_sample *const k[], unsigned set, int thr8
     for (int i = 0; i < n; i++)
         if (set & (1u << i))
             g[m++] = k[i];
+    if (m == 2) { /* the common case: one difference per channel */
+        const rt_sample *a = g[0], *b = g[1];
+        int nodes = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+        for (int j = 0; j < nodes; j++)
+            for (int ch = 0; ch < 3; ch++) {
+                int d = a->hits[j].contrib[ch] - b->hits[j].contrib[ch];
+                if (d > thr8 || d < -thr8)
+                    return 0;
+            }
+        return 1;
+    }
     int nodes = g[0]->nhits < RT_SAMPLE_MAX_HITS ? g[0]->nhits : RT_SAMPLE_MAX_HITS;
     for (int j = 0; j < nodes; j++)
         for (int ch = 0; ch < 3; ch++) {

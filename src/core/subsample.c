@@ -226,18 +226,15 @@ static const rt_sample *ss_at(ss_ctx *c, int x, int y)
     return sm;
 }
 
-/* Probe mode: the point (x, y) a split adds, with its context k (rt_probe_point); probed, and
- * shaded in full only when rt_probe_point cannot give its colour. A point some square added
- * before is kept: it got its record from the same context (the ends of its edge), so the frame
- * does not depend on the order squares are visited in. */
+/* Probe mode: the point (x, y) a split adds, not decided yet, with its context k
+ * (rt_probe_point); probed, and shaded in full only when rt_probe_point cannot give its
+ * colour. */
 static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
                                                    const rt_sample *const k[],
                                                    enum rt_split_reason why, real tx, real ty,
                                                    int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
-    if (sm->nhits)
-        return;
     rt_primary pri;
     if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, why, tx, ty,
                        span, &pri, sm)) {
@@ -250,20 +247,26 @@ static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int 
 
 /* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
  * corners): the middles of the edges it halves, each against the ends of its edge, and the
- * centre against the four corners. */
+ * centre against the four corners. A point some square added before is kept: it got its record
+ * from the same context (the ends of its edge), so the frame does not depend on the order
+ * squares are visited in. */
 static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
                                                      int nx, int ny, const rt_sample *const k[4],
                                                      enum rt_split_reason why)
 {
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
     int xm = x0 + w / 2, ym = y0 + h / 2;
+    /* the lattice at (x0, y0): a point already decided (nhits) is kept */
+    const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
-        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
+        if (!at[j * h * c->lstride + w / 2].nhits)
+            ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
     for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
         const rt_sample *kk[2] = {k[i], k[i + 2]};
-        ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
+        if (!at[h / 2 * c->lstride + i * w].nhits)
+            ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
     }
-    if (nx == 2 && ny == 2)
+    if (nx == 2 && ny == 2 && !at[h / 2 * c->lstride + w / 2].nhits)
         ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
