@@ -129,6 +129,13 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
         (n == 4 ? why == RT_SPLIT_CONTRIB
                 : rt_probe_same(k[0], k[1]) && !probe_agree(2, k, 3u, thr8)))
         return 0;
+    /* Nor on an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object, cell or
+     * light states: the point's record could then be one end's at most, and one is not enough
+     * there. */
+    if (n == 2 && span > RT_PROBE_ONE_SPAN &&
+        (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell ||
+         k[0]->lights != k[1]->lights))
+        return 0;
 
     /* 1. The primary hit and its checker cell (into out, scratch until the end); a noise
      * texture there ends the probe. Its primary ray is kept in *pri for what follows. */
