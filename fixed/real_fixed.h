@@ -273,6 +273,23 @@ static inline real r_floor_split(real x, int32_t *i)
     return x & 0xFFFF;
 }
 
+/* floor(r_mul(a, b) + 1/2) where the product lies well inside real's range (texture coordinates,
+ * docs/numerics.md): r_mul's rounding and the half's floor are nested floor divisions, so the
+ * integer is (P + 0x8000 - [P < 0] + 2^15 * 2^16) >> 32 for the 64-bit product P, one sum.
+ * The event-counting builds compose the checked operations instead (a broken bound shows). */
+static inline int32_t r_mul_round_in(real a, real b)
+{
+#if FX_COUNT_EVENTS
+    int32_t i;
+    r_floor_split(r_add(r_mul(a, b), 0x8000), &i);
+    return i;
+#else
+    int64_t p = (int64_t)a * b;
+    uint32_t k = 0x80008000u + (uint32_t)(p >> 63); /* 0x80007FFF for a negative product */
+    return (int32_t)((p + k) >> 32);
+#endif
+}
+
 /* x modulo m for m > 0: the result lies in [0, m). */
 static inline real r_mod(real x, real m)
 {

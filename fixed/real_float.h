@@ -103,6 +103,14 @@ static inline real r_floor_split(real x, int32_t *i)
     return x - f;
 }
 
+/* floor(a * b + 1/2) (the fixed build forms it from one 64-bit sum). */
+static inline int32_t r_mul_round_in(real a, real b)
+{
+    int32_t i;
+    r_floor_split(r_add(r_mul(a, b), 0.5f), &i);
+    return i;
+}
+
 static inline real r_mod(real x, real m)
 {
     real r = fmodf(x, m);

@@ -38,6 +38,55 @@ static double o_dot(int32_t i, int32_t j, int32_t k, double x, double y, double 
     return g[0] * x + g[1] * y + g[2] * z;
 }
 
+/* The integer noise as first written, step by step: the kernel in src/core/noise.c is a
+ * rearranged form of it and must give exactly the same Q16.16 values. */
+static int32_t ref_fade(uint32_t t)
+{
+    uint64_t t3 = ((uint64_t)t * t * t + 0x8000) >> 16;
+    uint64_t inner = 10 * 65536 - (((uint64_t)t * (15 * 65536 - 6 * t) + 0x8000) >> 16);
+    return (int32_t)((t3 * inner + 0x80000000u) >> 32);
+}
+
+static int32_t ref_lerp(int32_t a, int32_t b, int32_t t)
+{
+    return a + (int32_t)(((int64_t)(b - a) * t + 0x8000) >> 16);
+}
+
+static int32_t ref_dot(uint32_t i, uint32_t j, uint32_t k, int32_t x, int32_t y, int32_t z)
+{
+    const int *g = grad[(rt_noise_hash((int32_t)i, (int32_t)j, (int32_t)k) >> 8) & 15];
+    return g[0] * x + g[1] * y + g[2] * z;
+}
+
+/* Noise at Q16.16 lattice coordinates in [0, 2^24). */
+static int32_t ref_noise(uint32_t cx, uint32_t cy, uint32_t cz)
+{
+    uint32_t i = cx >> 16, j = cy >> 16, k = cz >> 16;
+    int32_t x = (int32_t)(cx & 0xFFFF), y = (int32_t)(cy & 0xFFFF), z = (int32_t)(cz & 0xFFFF);
+    int32_t x1 = x - 65536, y1 = y - 65536, z1 = z - 65536;
+    int32_t u = ref_fade((uint32_t)x), v = ref_fade((uint32_t)y), w = ref_fade((uint32_t)z);
+    int32_t a = ref_lerp(ref_dot(i, j, k, x, y, z), ref_dot(i + 1, j, k, x1, y, z), u);
+    int32_t b = ref_lerp(ref_dot(i, j + 1, k, x, y1, z), ref_dot(i + 1, j + 1, k, x1, y1, z), u);
+    int32_t c = ref_lerp(ref_dot(i, j, k + 1, x, y, z1), ref_dot(i + 1, j, k + 1, x1, y, z1), u);
+    int32_t d =
+        ref_lerp(ref_dot(i, j + 1, k + 1, x, y1, z1), ref_dot(i + 1, j + 1, k + 1, x1, y1, z1), u);
+    return ref_lerp(ref_lerp(a, b, v), ref_lerp(c, d, v), w);
+}
+
+/* fBm / turbulence over `octaves` full octaves on the same lattice coordinates. */
+static int32_t ref_octaves(uint32_t cx, uint32_t cy, uint32_t cz, int octaves, int absolute)
+{
+    int32_t sum = 0;
+    for (int o = 0; o < octaves; o++) {
+        int32_t n = ref_noise(cx, cy, cz);
+        if (absolute && n < 0)
+            n = -n;
+        sum += (n + ((1 << o) >> 1)) >> o;
+        cx = (cx << 1) & 0xFFFFFF, cy = (cy << 1) & 0xFFFFFF, cz = (cz << 1) & 0xFFFFFF;
+    }
+    return sum;
+}
+
 static double o_fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 
 static double o_lerp(double a, double b, double t) { return a + (b - a) * t; }
@@ -127,6 +176,60 @@ static void test_noise_vs_double(void **state)
     assert_true(lo > -1.1 && hi < 1.1);
     assert_true(lo < -0.5 && hi > 0.5); /* it does vary */
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW] + fx_event_count[FX_EV_DOMAIN], 0);
+}
+
+/* Its own generator, so that the other tests keep drawing the same points. */
+static uint32_t rng_state_u32 = 4242;
+static uint32_t rnd_u32(void)
+{
+    rng_state_u32 = rng_state_u32 * 1664525u + 1013904223u;
+    uint32_t hi = rng_state_u32 >> 16;
+    rng_state_u32 = rng_state_u32 * 1664525u + 1013904223u;
+    return hi << 16 | rng_state_u32 >> 16;
+}
+
+/* A lattice coordinate: anywhere in [0, 2^24), or at the ends of a cell (fades at 0 and 1). */
+static uint32_t rnd_coord(int n)
+{
+    uint32_t c = rnd_u32() & 0xFFFFFF;
+    switch (n % 8) {
+    case 0: return c & 0xFF0000;
+    case 1: return c | 0xFFFF;
+    case 2: return (c & 0xFF0000) | (c & 7);
+    default: return c;
+    }
+}
+
+static real coord_real(uint32_t c, int n)
+{
+    /* exact in both builds (24 bits); every other point from the negative side of the wrap */
+    return r_from_q16(n & 1 ? (int32_t)c - (1 << 24) : (int32_t)c);
+}
+
+static void test_noise_vs_reference(void **state)
+{
+    (void)state;
+    int32_t lo = 0, hi = 0;
+    for (int n = 0; n < 400000; n++) {
+        uint32_t cx = rnd_coord(n), cy = rnd_coord(n / 8), cz = rnd_coord(n / 64);
+        vec3 p = v3(coord_real(cx, n), coord_real(cy, n / 2), coord_real(cz, n / 4));
+        int32_t want = ref_noise(cx, cy, cz);
+        real got = rt_noise(p);
+        if (got != r_from_q16(want))
+            fail_msg("noise at Q16.16 (%u, %u, %u): %.8g, the reference gives %d / 65536", cx, cy,
+                     cz, (double)to_d(got), want);
+        lo = want < lo ? want : lo;
+        hi = want > hi ? want : hi;
+    }
+    print_message("noise = reference on 400000 lattice points, range [%d, %d] / 65536\n", lo, hi);
+    assert_true(lo < -40000 && hi > 40000); /* the points reach well into both signs */
+    for (int n = 0; n < 40000; n++) {
+        uint32_t cx = rnd_coord(n), cy = rnd_coord(n + 3), cz = rnd_coord(n + 5);
+        vec3 p = v3(coord_real(cx, n), coord_real(cy, n), coord_real(cz, n));
+        int oct = 1 + n % RT_NOISE_MAX_OCTAVES;
+        assert_true(rt_fbm(p, oct) == r_from_q16(ref_octaves(cx, cy, cz, oct, 0)));
+        assert_true(rt_turbulence(p, oct) == r_from_q16(ref_octaves(cx, cy, cz, oct, 1)));
+    }
 }
 
 static void test_noise_continuity(void **state)
@@ -248,10 +351,11 @@ static void test_palette(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hash_period),     cmocka_unit_test(test_noise_lattice_zero),
-        cmocka_unit_test(test_noise_vs_double), cmocka_unit_test(test_noise_continuity),
-        cmocka_unit_test(test_fbm_vs_double),   cmocka_unit_test(test_detail_rule),
-        cmocka_unit_test(test_detail_sum),      cmocka_unit_test(test_palette),
+        cmocka_unit_test(test_hash_period),      cmocka_unit_test(test_noise_lattice_zero),
+        cmocka_unit_test(test_noise_vs_double),  cmocka_unit_test(test_noise_vs_reference),
+        cmocka_unit_test(test_noise_continuity), cmocka_unit_test(test_fbm_vs_double),
+        cmocka_unit_test(test_detail_rule),      cmocka_unit_test(test_detail_sum),
+        cmocka_unit_test(test_palette),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -171,6 +171,135 @@ static void test_interpolate_gradient(void **state)
     print_message("interpolation: worst error %d level(s)\n", worst);
 }
 
+/* The fill as it was written before it kept its channels as 255 v + 2^15 (ss_pack): per
+ * channel r_to_byte of l + i s, with l, r and s from the rounded products; rt_interpolate must
+ * give exactly these bytes. */
+static int32_t ref_mul(int32_t d, int32_t t)
+{
+    uint32_t p = (uint32_t)(d < 0 ? -d : d) * (uint32_t)t;
+    int32_t q = (int32_t)((p + 0x8000u) >> 16);
+    return d < 0 ? -q : q;
+}
+
+static uint32_t ref_byte(int32_t v)
+{
+    return v <= 0 ? 0 : v >= 65536 ? 255 : ((uint32_t)v * 255u + 0x8000u) >> 16;
+}
+
+static int32_t ref_w(int i, int n) { return n > 0 ? (i * 65536 + n / 2) / n : 0; }
+
+static void ref_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
+                     const int32_t c[4][3])
+{
+    int inner = cols < w ? cols : w;
+    for (int j = 0; j < rows; j++) {
+        int32_t l[3], r[3];
+        for (int ch = 0; ch < 3; ch++) {
+            if (j == 0) {
+                l[ch] = c[0][ch];
+                r[ch] = c[1][ch];
+            } else if (j == h) {
+                l[ch] = c[2][ch];
+                r[ch] = c[3][ch];
+            } else {
+                l[ch] = c[0][ch] + ref_mul(c[2][ch] - c[0][ch], ref_w(j, h));
+                r[ch] = c[1][ch] + ref_mul(c[3][ch] - c[1][ch], ref_w(j, h));
+            }
+        }
+        uint32_t *row = dst + j * stride;
+        row[0] = ref_byte(l[0]) << 16 | ref_byte(l[1]) << 8 | ref_byte(l[2]);
+        int32_t v[3] = {l[0], l[1], l[2]}, s[3];
+        for (int ch = 0; ch < 3; ch++)
+            s[ch] = ref_mul(r[ch] - l[ch], ref_w(1, w));
+        for (int i = 1; i < inner; i++) {
+            for (int ch = 0; ch < 3; ch++)
+                v[ch] += s[ch];
+            row[i] = ref_byte(v[0]) << 16 | ref_byte(v[1]) << 8 | ref_byte(v[2]);
+        }
+        if (cols > w && w > 0)
+            row[w] = ref_byte(r[0]) << 16 | ref_byte(r[1]) << 8 | ref_byte(r[2]);
+    }
+}
+
+static uint32_t ts_rand_state = 12345;
+static uint32_t ts_rand(void)
+{
+    ts_rand_state = ts_rand_state * 1664525u + 1013904223u;
+    return ts_rand_state >> 8;
+}
+
+/* A channel value in [0, 1]: uniform, or one of the ends and their neighbours, where the
+ * rounding and clamping are tightest. */
+static int32_t rand_q16(void)
+{
+    static const int32_t ends[] = {0,     1,     2,     127,   128,   129,  32767,
+                                   32768, 32896, 65407, 65408, 65535, 65536};
+    uint32_t u = ts_rand();
+    if (u & 1)
+        return ends[(u >> 1) % (sizeof ends / sizeof ends[0])];
+    return (int32_t)((u >> 1) % 65537);
+}
+
+/* Every square size and region (cols w or w + 1, rows h or h + 1), random corner colours (and
+ * some with one colour, equal rows or equal columns): the bytes are the reference formula's,
+ * and nothing outside the region is written. */
+static void test_interpolate_exact(void **state)
+{
+    (void)state;
+    enum { S = RT_GRID_MAX + 2 };
+    static uint32_t got[S * S], want[S * S];
+    long pixels = 0;
+    for (int w = 0; w <= RT_GRID_MAX; w++)
+        for (int h = 0; h <= RT_GRID_MAX; h++)
+            for (int region = 0; region < 4; region++) {
+                int cols = w + (region & 1), rows = h + (region >> 1);
+                if (cols < 1 || rows < 1)
+                    continue;
+                for (int trial = 0; trial < 48; trial++) {
+                    int32_t c[4][3];
+                    rt_color k[4];
+                    for (int n = 0; n < 4; n++) {
+                        for (int ch = 0; ch < 3; ch++)
+                            c[n][ch] = rand_q16();
+#if REAL_FIXED
+                        k[n] = v3(c[n][0], c[n][1], c[n][2]);
+#else
+                        /* the float build's channel near it, and the Q16.16 value it
+                         * rounds to */
+                        real f[3];
+                        for (int ch = 0; ch < 3; ch++) {
+                            f[ch] = (real)c[n][ch] / 65536.0f +
+                                (real)((int)(ts_rand() % 64) - 32) * 1e-7f;
+                            f[ch] = f[ch] < 0 ? 0 : f[ch] > 1 ? 1 : f[ch];
+                            c[n][ch] = r_unit_to_q16(f[ch]);
+                        }
+                        k[n] = v3(f[0], f[1], f[2]);
+#endif
+                    }
+                    /* one colour, equal rows, equal columns: the fill's shortcuts */
+                    static const int same[3][4] = {{0, 0, 0, 0}, {0, 0, 2, 2}, {0, 1, 0, 1}};
+                    if (trial < 3)
+                        for (int n = 1; n < 4; n++) {
+                            k[n] = k[same[trial][n]];
+                            memcpy(c[n], c[same[trial][n]], sizeof c[n]);
+                        }
+                    for (int i = 0; i < S * S; i++)
+                        got[i] = want[i] = 0xDEADBEEF;
+                    ref_fill(want, S, w, h, cols, rows, c);
+                    rt_interpolate(got, S, w, h, cols, rows, k[0], k[1], k[2], k[3]);
+                    if (memcmp(got, want, sizeof got) != 0) {
+                        for (int i = 0; i < S * S; i++)
+                            if (got[i] != want[i])
+                                fail_msg("%dx%d square, %dx%d pixels: pixel (%d, %d) is %06x, "
+                                         "the reference %06x",
+                                         w, h, cols, rows, i % S, i / S, got[i], want[i]);
+                    }
+                    pixels += (long)cols * rows;
+                }
+            }
+    print_message("interpolation: %ld pixels equal to the reference formula's\n", pixels);
+}
+
 /* ---- rendered cases ------------------------------------------------------------------------ */
 
 #define W 96
@@ -635,6 +764,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_criteria),
         cmocka_unit_test(test_interpolate_gradient),
+        cmocka_unit_test(test_interpolate_exact),
         cmocka_unit_test(test_object_edge),
         cmocka_unit_test(test_shadow_edge),
         cmocka_unit_test(test_reflected_outline),

@@ -85,7 +85,8 @@ static const struct cli_option {
     {"--depth", NULL, "N", CLI_R | CLI_PLAY | CLI_EDGES, CLI_KNOB,
      "recursion limit 0..8 (default: the scene's)"},
     {"--mode", NULL, "M", CLI_R | CLI_PLAY, CLI_KNOB,
-     "full (trace every pixel) or adaptive (default)"},
+     "full (trace every pixel), adaptive (default) or probe (new\npoints probed first, "
+     "shaded in full only where needed)"},
     {"--grid", NULL, "N", CLI_R | CLI_PLAY | CLI_EDGES, CLI_KNOB,
      "adaptive: square size 2, 4, 8 or 16 (default 8)"},
     {"--threshold", NULL, "X", CLI_R | CLI_PLAY | CLI_EDGES, CLI_KNOB,

@@ -3,13 +3,6 @@
 
 #include "rt.h"
 
-/* Twelve gradients along the cube's edges, four repeated to make sixteen (one per 4-bit hash):
- * each is (gx, gy, gz) with components in {-1, 0, 1}. */
-static const int8_t noise_grad[16][3] = {
-    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
-    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1},
-};
-
 /* Lattice coordinates are Q16.16 integers modulo the period: 24 bits. */
 #define NOISE_FRAC 16
 #define NOISE_ONE (1 << NOISE_FRAC)
@@ -21,13 +14,18 @@ static const int8_t noise_grad[16][3] = {
 #define NOISE_HY 0xD8163841u
 #define NOISE_HZ 0xCB1AB31Fu
 
-static inline uint32_t noise_mix(uint32_t h)
+/* The mixer's first step, h ^ (h >> 15), is linear over XOR: applied to each per-axis term it
+ * gives the same as applied to their XOR, so the eight corners share it. */
+static inline uint32_t noise_spread(uint32_t h) { return h ^ h >> 15; }
+
+/* The rest of the mixer, on a spread value. */
+static inline uint32_t noise_mix_spread(uint32_t h)
 {
-    h ^= h >> 15;
     h *= 0x2C1B3C6Du;
-    h ^= h >> 12;
-    return h;
+    return h ^ h >> 12;
 }
+
+static inline uint32_t noise_mix(uint32_t h) { return noise_mix_spread(noise_spread(h)); }
 
 uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
 {
@@ -36,54 +34,109 @@ uint32_t rt_noise_hash(int32_t i, int32_t j, int32_t k)
                      ((uint32_t)k & mask) * NOISE_HZ);
 }
 
-/* Dot product of the gradient of hash h with the offset (x, y, z) from that corner (Q16.16
- * offsets in [-1, 1]: the result is within +-2). */
-static inline int32_t noise_dot(uint32_t h, int32_t x, int32_t y, int32_t z)
+/* The gradients: the twelve edges of the cube, four repeated to make sixteen, one per value of
+ * a hash's bits 8..11: (1, 1, 0), (-1, 1, 0), (1, -1, 0), (-1, -1, 0), (1, 0, 1), (-1, 0, 1),
+ * (1, 0, -1), (-1, 0, -1), (0, 1, 1), (0, -1, 1), (0, 1, -1), (0, -1, -1), then (1, 1, 0),
+ * (0, -1, 1), (-1, 1, 0), (0, -1, -1). The offset from corner c = (cx, cy, cz) of the cell
+ * (cx, cy, cz in {0, 1}) to the point is (x, y, z) - c, (x, y, z) the offset from corner 0, so
+ * a gradient's dot product with it is g . (x, y, z) - g . c: the first part is the same for
+ * every corner (noise_eval tabulates it once per point from six sums and differences), the
+ * second is this table: noise_corner[cx + 2 cy + 4 cz - 1][g] = -g . c. */
+static const int32_t noise_corner[7][16] = {
+    {-1, 1, -1, 1, -1, 1, -1, 1, 0, 0, 0, 0, -1, 0, 1, 0},   /* c = (1, 0, 0) */
+    {-1, -1, 1, 1, 0, 0, 0, 0, -1, 1, -1, 1, -1, 1, -1, 1},  /* c = (0, 1, 0) */
+    {-2, 0, 0, 2, -1, 1, -1, 1, -1, 1, -1, 1, -2, 1, 0, 1},  /* c = (1, 1, 0) */
+    {0, 0, 0, 0, -1, -1, 1, 1, -1, -1, 1, 1, 0, -1, 0, 1},   /* c = (0, 0, 1) */
+    {-1, 1, -1, 1, -2, 0, 0, 2, -1, -1, 1, 1, -1, -1, 1, 1}, /* c = (1, 0, 1) */
+    {-1, -1, 1, 1, -1, -1, 1, 1, -2, 0, 0, 2, -1, 0, -1, 2}, /* c = (0, 1, 1) */
+    {-2, 0, 0, 2, -2, 0, 0, 2, -2, 0, 0, 2, -2, 0, 0, 2},    /* c = (1, 1, 1) */
+};
+
+/* Dot product of the gradient picked by bits 8..11 of the hash h with the offset from corner c
+ * (0..7): dots[g] = g . (x, y, z), the Q16.16 offset from corner 0 (in [0, 1): within +-2),
+ * plus -g . c. */
+static inline int32_t noise_dot(uint32_t h, const int32_t dots[16], int c)
 {
-    const int8_t *g = noise_grad[(h >> 8) & 15];
-    return g[0] * x + g[1] * y + g[2] * z;
+    uint32_t off = (h & 0xF00) >> 6; /* the byte offset of column g in a row of 16 words */
+    int32_t d = *(const int32_t *)((const char *)dots + off);
+    return c == 0 ? d : d + *(const int32_t *)((const char *)noise_corner[c - 1] + off) * NOISE_ONE;
 }
 
 /* Quintic fade 6t^5 - 15t^4 + 10t^3 of t in [0, 1) (Q16.16): zero first and second
  * derivatives at 0 and 1. t^3 is kept in Q.32 and the factor 10 - t (15 - 6t) in Q16.16, each
- * rounded once: within 2 LSB of the exact value. */
+ * rounded once: within 2 LSB of the exact value. The last rounding adds the product's bit 31
+ * to its high word (the carry of adding 2^31). */
 static inline int32_t noise_fade(uint32_t t)
 {
-    uint32_t t3 = (uint32_t)(((uint64_t)(t * t) * t + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+    uint32_t t3 =
+        (uint32_t)((((uint64_t)(t * t) * t + (NOISE_ONE >> 1)) << (32 - NOISE_FRAC)) >> 32);
     uint32_t inner = 10 * NOISE_ONE -
         (uint32_t)(((uint64_t)t * (15 * NOISE_ONE - 6 * t) + (NOISE_ONE >> 1)) >> NOISE_FRAC);
-    return (int32_t)(((uint64_t)t3 * inner + 0x80000000u) >> 32);
+    uint64_t p = (uint64_t)t3 * inner;
+    return (int32_t)((uint32_t)(p >> 32) + ((uint32_t)p >> 31));
 }
 
-/* a + (b - a) t, t in [0, 1] (Q16.16), rounded half up. */
-static inline int32_t noise_lerp(int32_t a, int32_t b, int32_t t)
+/* A fade value t in [0, 1] (Q16.16) split into its high and low bytes, t = 256 hi + lo, for
+ * interpolations in 32 bits. */
+typedef struct noise_weight {
+    int32_t hi, lo;
+} noise_weight;
+
+static inline noise_weight noise_weight_of(int32_t t) { return (noise_weight){t >> 8, t & 255}; }
+
+/* a + (b - a) t rounded half up, t = 256 t.hi + t.lo in [0, 1] (Q16.16), |a|, |b| <= 2 (2^17):
+ * floor(((b - a) t + 2^15) / 2^16) = floor((P + floor(Q / 2^8)) / 2^8) with
+ * P = (b - a) t.hi + 2^7 and Q = (b - a) t.lo, both below 2^27 in magnitude: the same value as
+ * the 64-bit product, in 32-bit arithmetic. */
+static inline int32_t noise_lerp(int32_t a, int32_t b, noise_weight t)
 {
-    return a + (int32_t)(((int64_t)(b - a) * t + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+    int32_t d = b - a;
+    int32_t p = d * t.hi + (1 << 7);
+    p += (d * t.lo) >> 8;
+    return a + (p >> 8);
 }
 
-/* Noise at the lattice coordinates (cx, cy, cz) (Q16.16 modulo the period), in Q16.16. */
-static int32_t noise_eval(uint32_t cx, uint32_t cy, uint32_t cz)
+/* The corners c = (0, cy, cz) and c + (1, 0, 0) of a cell edge along x, sx0 and sx1 their x hash
+ * terms, syz the other two XORed: their gradients' dot products with the offsets from them,
+ * interpolated by u. */
+static inline int32_t noise_edge(uint32_t sx0, uint32_t sx1, uint32_t syz, const int32_t dots[16],
+                                 int c, noise_weight u)
+{
+    return noise_lerp(noise_dot(noise_mix_spread(sx0 ^ syz), dots, c),
+                      noise_dot(noise_mix_spread(sx1 ^ syz), dots, c + 1), u);
+}
+
+/* Noise at the lattice coordinates (cx, cy, cz) (Q16.16 modulo the period), in Q16.16. dots is
+ * the caller's room for 16 words: passed in, its address is a register, so each look-up is one
+ * load (GCC for ARM builds a local array's indexed address in three instructions). */
+static int32_t noise_eval(uint32_t cx, uint32_t cy, uint32_t cz, int32_t dots[16])
 {
     const uint32_t mask = RT_NOISE_PERIOD - 1;
     uint32_t i = cx >> NOISE_FRAC, j = cy >> NOISE_FRAC, k = cz >> NOISE_FRAC;
     int32_t x = (int32_t)(cx & (NOISE_ONE - 1)), y = (int32_t)(cy & (NOISE_ONE - 1)),
             z = (int32_t)(cz & (NOISE_ONE - 1));
-    int32_t x1 = x - NOISE_ONE, y1 = y - NOISE_ONE, z1 = z - NOISE_ONE;
-    uint32_t hx0 = (i & mask) * NOISE_HX, hx1 = ((i + 1) & mask) * NOISE_HX;
-    uint32_t hy0 = (j & mask) * NOISE_HY, hy1 = ((j + 1) & mask) * NOISE_HY;
-    uint32_t hz0 = (k & mask) * NOISE_HZ, hz1 = ((k + 1) & mask) * NOISE_HZ;
-    int32_t u = noise_fade((uint32_t)x), v = noise_fade((uint32_t)y), w = noise_fade((uint32_t)z);
+    /* the hash's per-axis terms, each already XORed with itself shifted (see noise_spread) */
+    uint32_t sx0 = noise_spread((i & mask) * NOISE_HX),
+             sx1 = noise_spread(((i + 1) & mask) * NOISE_HX);
+    uint32_t sy0 = noise_spread((j & mask) * NOISE_HY),
+             sy1 = noise_spread(((j + 1) & mask) * NOISE_HY);
+    uint32_t sz0 = noise_spread((k & mask) * NOISE_HZ),
+             sz1 = noise_spread(((k + 1) & mask) * NOISE_HZ);
+    /* g . (x, y, z) for each gradient g, in the order of noise_corner's columns */
+    int32_t pxy = x + y, mxy = x - y, pxz = x + z, mxz = x - z, pyz = y + z, myz = y - z;
+    dots[0] = dots[12] = pxy, dots[1] = dots[14] = -mxy, dots[2] = mxy, dots[3] = -pxy;
+    dots[4] = pxz, dots[5] = -mxz, dots[6] = mxz, dots[7] = -pxz;
+    dots[8] = pyz, dots[9] = dots[13] = -myz, dots[10] = myz, dots[11] = dots[15] = -pyz;
+    noise_weight u = noise_weight_of(noise_fade((uint32_t)x));
+    noise_weight v = noise_weight_of(noise_fade((uint32_t)y));
+    noise_weight w = noise_weight_of(noise_fade((uint32_t)z));
 
-    uint32_t h00 = hy0 ^ hz0, h10 = hy1 ^ hz0, h01 = hy0 ^ hz1, h11 = hy1 ^ hz1;
-    int32_t a = noise_lerp(noise_dot(noise_mix(hx0 ^ h00), x, y, z),
-                           noise_dot(noise_mix(hx1 ^ h00), x1, y, z), u);
-    int32_t b = noise_lerp(noise_dot(noise_mix(hx0 ^ h10), x, y1, z),
-                           noise_dot(noise_mix(hx1 ^ h10), x1, y1, z), u);
-    int32_t c = noise_lerp(noise_dot(noise_mix(hx0 ^ h01), x, y, z1),
-                           noise_dot(noise_mix(hx1 ^ h01), x1, y, z1), u);
-    int32_t d = noise_lerp(noise_dot(noise_mix(hx0 ^ h11), x, y1, z1),
-                           noise_dot(noise_mix(hx1 ^ h11), x1, y1, z1), u);
-    return noise_lerp(noise_lerp(a, b, v), noise_lerp(c, d, v), w);
+    int32_t a = noise_edge(sx0, sx1, sy0 ^ sz0, dots, 0, u);
+    int32_t b = noise_edge(sx0, sx1, sy1 ^ sz0, dots, 2, u);
+    int32_t ab = noise_lerp(a, b, v);
+    int32_t c = noise_edge(sx0, sx1, sy0 ^ sz1, dots, 4, u);
+    int32_t d = noise_edge(sx0, sx1, sy1 ^ sz1, dots, 6, u);
+    return noise_lerp(ab, noise_lerp(c, d, v), w);
 }
 
 vec3 rt_noise_wrap(vec3 p)
@@ -105,9 +158,10 @@ static uint32_t noise_q16(real w)
 
 real rt_noise(vec3 p)
 {
+    int32_t dots[16];
     return r_from_q16(noise_eval(noise_q16(p.x) & NOISE_COORD_MASK,
                                  noise_q16(p.y) & NOISE_COORD_MASK,
-                                 noise_q16(p.z) & NOISE_COORD_MASK));
+                                 noise_q16(p.z) & NOISE_COORD_MASK, dots));
 }
 
 /* E|noise| over the lattice, Q16.16 (0.2203, measured over 2 million points). */
@@ -117,11 +171,12 @@ real rt_noise(vec3 p)
  * octave doubles the lattice coordinates modulo the period, in integers. */
 static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
 {
-    uint32_t cx = noise_q16(p.x) & NOISE_COORD_MASK, cy = noise_q16(p.y) & NOISE_COORD_MASK,
-             cz = noise_q16(p.z) & NOISE_COORD_MASK;
-    int32_t sum = 0;
+    /* the 24-bit lattice coordinates in the top bits of a word: doubling one modulo the period
+     * is a shift that drops the bit going out */
+    uint32_t cx = noise_q16(p.x) << 8, cy = noise_q16(p.y) << 8, cz = noise_q16(p.z) << 8;
+    int32_t sum = 0, dots[16];
     for (int o = 0; o < d.octaves; o++) {
-        int32_t n = noise_eval(cx, cy, cz);
+        int32_t n = noise_eval(cx >> 8, cy >> 8, cz >> 8, dots);
         if (absolute && n < 0)
             n = -n;
         if (o == d.octaves - 1 && d.last < RT_NOISE_WEIGHT_ONE) /* the fading octave */
@@ -129,9 +184,7 @@ static real noise_octaves(vec3 p, rt_noise_detail d, int absolute)
                  RT_NOISE_WEIGHT_ONE / 2) >>
                 8;
         sum += (n + ((1 << o) >> 1)) >> o; /* amplitude 2^-o, rounded half up */
-        cx = (cx << 1) & NOISE_COORD_MASK;
-        cy = (cy << 1) & NOISE_COORD_MASK;
-        cz = (cz << 1) & NOISE_COORD_MASK;
+        cx <<= 1, cy <<= 1, cz <<= 1;
     }
     if (absolute) /* the octaves left out, at their mean */
         for (int o = d.octaves; o < d.total; o++)
@@ -207,6 +260,7 @@ vec3 rt_palette(int id, real t)
     real f = r_floor_split(r_muli(t, NOISE_STOPS - 1), &seg);
     if (seg >= NOISE_STOPS - 1)
         return pal[NOISE_STOPS - 1];
-    vec3 a = pal[seg], b = pal[seg + 1];
-    return v3(r_lerp(a.x, b.x, f), r_lerp(a.y, b.y, f), r_lerp(a.z, b.z, f));
+    /* a + (b - a) f, colours and f in [0, 1]: in range, so formed without range checks */
+    vec3 a = pal[seg];
+    return c3_madd(a, v3_sub(pal[seg + 1], a), f);
 }

@@ -70,13 +70,11 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
  * the fixed-point build's r_lerp, r_mul and r_to_byte step for step (no intermediate value can
  * saturate), so fixed frames are what they were with those calls, at a fraction of the cost;
  * the float build interpolates the same way from its rounded corners. */
-typedef struct ss_rgb {
-    int32_t c[3];
-} ss_rgb;
 
 /* ss_wq[n][i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's fixed-point
- * value), for squares of up to RT_GRID_MAX pixels: a constant table, no division. */
-#define SS_W(i, n) ((n) > 0 ? ((i)*65536 + (n) / 2) / ((n) > 0 ? (n) : 1) : 0)
+ * value) for 0 <= i < n <= RT_GRID_MAX (below 2^16: 16 bits each), 0 elsewhere: a constant
+ * table, no division. */
+#define SS_W(i, n) ((((i) < (n) ? (i) : 0) * 65536 + (n) / 2) / ((n) > 0 ? (n) : 1))
 #define SS_ROW(n) \
     { \
         SS_W(0, n), SS_W(1, n), SS_W(2, n), SS_W(3, n), SS_W(4, n), SS_W(5, n), SS_W(6, n), \
@@ -86,25 +84,14 @@ typedef struct ss_rgb {
 #if RT_GRID_MAX != 16
 #error "ss_wq is written out for RT_GRID_MAX 16"
 #endif
-static const int32_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
+static const uint16_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
     SS_ROW(0),  SS_ROW(1),  SS_ROW(2),  SS_ROW(3),  SS_ROW(4),  SS_ROW(5),
     SS_ROW(6),  SS_ROW(7),  SS_ROW(8),  SS_ROW(9),  SS_ROW(10), SS_ROW(11),
     SS_ROW(12), SS_ROW(13), SS_ROW(14), SS_ROW(15), SS_ROW(16)};
 
-/* A colour already clamped to [0, 1] (ss_trace clamps every sample's). */
-static ss_rgb ss_rgb_of(rt_color c)
-{
-    ss_rgb v = {{r_unit_to_q16(c.x), r_unit_to_q16(c.y), r_unit_to_q16(c.z)}};
-    return v;
-}
-
-static ss_rgb ss_rgb_clamped(rt_color c)
-{
-    return ss_rgb_of(v3(r_clamp(c.x, 0, R_ONE), r_clamp(c.y, 0, R_ONE), r_clamp(c.z, 0, R_ONE)));
-}
-
 /* d * t / 2^16 rounded half away from zero (as r_mul rounds), for |d| <= 65536 and
- * 0 <= t < 65536: the product and its rounding fit in 32 unsigned bits. */
+ * 0 <= t < 65536: the product and its rounding fit in 32 unsigned bits. The result lies between
+ * 0 and d (|d| t / 2^16 < |d|, an integer). */
 static int32_t ss_mul(int32_t d, int32_t t)
 {
     uint32_t p = (uint32_t)(d < 0 ? -d : d) * (uint32_t)t;
@@ -112,58 +99,108 @@ static int32_t ss_mul(int32_t d, int32_t t)
     return d < 0 ? -q : q;
 }
 
-/* One channel as a byte: clamped to [0, 65536] and rounded as r_to_byte does. */
-static uint32_t ss_byte(int32_t v)
+/* ss_mul(d, 1/2): d / 2 rounded half away from zero ((|d| 2^15 + 2^15) >> 16 = (|d| + 1) >> 1). */
+static int32_t ss_half(int32_t d) { return d < 0 ? -((1 - d) >> 1) : (d + 1) >> 1; }
+
+/* The byte of a channel v (Q16.16) is ss_byte(v): v clamped to [0, 65536] and rounded as
+ * r_to_byte does, (v 255 + 2^15) >> 16. The fill keeps each channel as V = v 255 + 2^15
+ * instead (SS_V): for -128 <= v <= 65664, V lies in [128, 2^24 - 128], and its bits 16..23
+ * are that byte (v <= 0: V < 2^16, so 0; v >= 65536: V >= 255 2^16, so 255; else the formula
+ * itself), so a pixel is three masks and shifts (ss_pack), with no clamp. Every V the fill
+ * packs is within that range (ss_fill says why). */
+#define SS_V(v) ((v)*255 + 0x8000)
+
+static uint32_t ss_pack(int32_t r, int32_t g, int32_t b)
 {
-    if (v <= 0)
-        return 0;
-    if (v >= 65536)
-        return 255;
-    return ((uint32_t)v * 255u + 0x8000u) >> 16;
+    return ((uint32_t)r & 0xFF0000u) | ((uint32_t)g >> 16) << 8 | (uint32_t)b >> 16;
 }
 
-static uint32_t ss_pixel(const int32_t *c)
+/* The pixel of a colour in [0, 1] as the fill gives a corner: ss_byte of each channel's
+ * r_unit_to_q16 (rt_color_pixel's, in the fixed-point build). */
+static uint32_t ss_pixel(const rt_color *c)
 {
-    return ss_byte(c[0]) << 16 | ss_byte(c[1]) << 8 | ss_byte(c[2]);
+    return ss_pack(SS_V(r_unit_to_q16(c->x)), SS_V(r_unit_to_q16(c->y)), SS_V(r_unit_to_q16(c->z)));
 }
 
-/* Bilinear fill with the Q16.16 weights wx[i] = i / w and wy[j] = j / h given (only wx[1] is
- * used). */
-static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows, const int32_t *wx,
-                    const int32_t *wy, ss_rgb c00, ss_rgb c10, ss_rgb c01, ss_rgb c11)
+/* One channel of a 2x2 fill (ss_fill's rows for w = h = 2, where every weight is 1/2): corners
+ * a (0, 0), b (2, 0), c (0, 2), d (2, 2); the bytes of pixels (0, 0), (1, 0), (0, 1) and (1, 1),
+ * shifted left by sh, are or'ed into p[0..3]. */
+static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh, uint32_t p[4])
 {
+    int32_t l = a + ss_half(c - a), r = b + ss_half(d - b);
+    p[0] |= (uint32_t)SS_V(a) >> 16 << sh;
+    p[1] |= (uint32_t)SS_V(a + ss_half(b - a)) >> 16 << sh;
+    p[2] |= (uint32_t)SS_V(l) >> 16 << sh;
+    p[3] |= (uint32_t)SS_V(l + ss_half(r - l)) >> 16 << sh;
+}
+
+/* Bilinear fill of `cols` x `rows` pixels from dst (cols <= w + 1, rows <= h + 1) from the
+ * colours of the corners k[]: (0, 0), (w, 0), (0, h), (w, h), each in [0, 1]. Row j's ends are
+ * l = k0 + ss_mul(k2 - k0, j / h) and r = k1 + ss_mul(k3 - k1, j / h) (k2 and k3 themselves in
+ * row h), in [0, 65536] (ss_mul); pixel i of the row, 0 < i < w, is l + i s with
+ * s = ss_mul(r - l, 1 / w) by forward differences (added up in the V form: V_i = V_0 + i 255 s,
+ * the same integers); column w is r itself. As |s - (r - l) / w| <= 1/2 + |r - l|
+ * |1/w - ss_wq[w][1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
+ * value in [0, 65536]: every channel packed lies in [-15, 65551], inside ss_pack's range. */
+static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
+                    const rt_color *const k[4])
+{
+    /* q: the corners' channels, k0 k1 (row 0's ends) then k2 k3 (row h's) */
+    int32_t q[12], m[6];
+    for (int n = 0; n < 4; n++) {
+        q[3 * n] = r_unit_to_q16(k[n]->x);
+        q[3 * n + 1] = r_unit_to_q16(k[n]->y);
+        q[3 * n + 2] = r_unit_to_q16(k[n]->z);
+    }
+    if (w == 2 && h == 2 && cols == 2 && rows == 2) {
+        /* The usual leaf, a 2x2 square without the frame's last column or row: every weight
+         * is 1/2, and ss_mul(d, 1/2) is ss_half(d). The same values as the rows below. */
+        uint32_t p[4] = {0, 0, 0, 0};
+        for (int ch = 0; ch < 3; ch++)
+            ss_quad_ch(q[ch], q[3 + ch], q[6 + ch], q[9 + ch], 16 - 8 * ch, p);
+        dst[0] = p[0];
+        dst[1] = p[1];
+        dst[stride] = p[2];
+        dst[stride + 1] = p[3];
+        return;
+    }
+    if (q[0] == q[3] && q[0] == q[6] && q[0] == q[9] && q[1] == q[4] && q[1] == q[7] &&
+        q[1] == q[10] && q[2] == q[5] && q[2] == q[8] && q[2] == q[11]) {
+        /* One colour (dark or empty parts of a frame): every l, r the rows below compute is
+         * that colour and every step 0, so each of the pixels (columns 0..cols-1) gets it. */
+        uint32_t px = ss_pack(SS_V(q[0]), SS_V(q[1]), SS_V(q[2]));
+        for (int j = 0; j < rows; j++, dst += stride)
+            for (int i = 0; i < cols; i++)
+                dst[i] = px;
+        return;
+    }
+    const uint16_t *wy = ss_wq[h];
+    int32_t sx = ss_wq[w][1];
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
-    for (int j = 0; j < rows; j++) {
-        ss_rgb l, r;
-        if (j == 0) {
-            l = c00;
-            r = c10;
-        } else if (j == h) {
-            l = c01;
-            r = c11;
-        } else {
-            for (int ch = 0; ch < 3; ch++) {
-                l.c[ch] = c00.c[ch] + ss_mul(c01.c[ch] - c00.c[ch], wy[j]);
-                r.c[ch] = c10.c[ch] + ss_mul(c11.c[ch] - c10.c[ch], wy[j]);
-            }
+    int right = cols > w && w > 0;   /* column w: the right edge's colour */
+    for (int j = 0; j < rows; j++, dst += stride) {
+        const int32_t *e = q; /* the row's ends: l in e[0..2], r in e[3..5] */
+        if (j > 0 && j == h)
+            e = q + 6;
+        else if (j > 0) {
+            for (int n = 0; n < 6; n++)
+                m[n] = q[n] + ss_mul(q[n + 6] - q[n], wy[j]);
+            e = m;
         }
-        uint32_t *row = dst + (long)j * stride;
-        row[0] = ss_pixel(l.c);
+        int32_t v0 = SS_V(e[0]), v1 = SS_V(e[1]), v2 = SS_V(e[2]);
+        dst[0] = ss_pack(v0, v1, v2);
         if (inner > 1) {
-            /* Along the row by forward differences: w additions of (r - l) / w drift by at
-             * most w/2 steps of Q16.16, far below an 8-bit level (and within 32 bits). */
-            int32_t s0 = ss_mul(r.c[0] - l.c[0], wx[1]), s1 = ss_mul(r.c[1] - l.c[1], wx[1]),
-                    s2 = ss_mul(r.c[2] - l.c[2], wx[1]);
-            int32_t v0 = l.c[0], v1 = l.c[1], v2 = l.c[2];
+            int32_t s0 = ss_mul(e[3] - e[0], sx) * 255, s1 = ss_mul(e[4] - e[1], sx) * 255,
+                    s2 = ss_mul(e[5] - e[2], sx) * 255;
             for (int i = 1; i < inner; i++) {
                 v0 += s0;
                 v1 += s1;
                 v2 += s2;
-                row[i] = ss_byte(v0) << 16 | ss_byte(v1) << 8 | ss_byte(v2);
+                dst[i] = ss_pack(v0, v1, v2);
             }
         }
-        if (cols > w && w > 0)
-            row[w] = ss_pixel(r.c);
+        if (right)
+            dst[w] = ss_pack(SS_V(e[3]), SS_V(e[4]), SS_V(e[5]));
     }
 }
 
@@ -172,8 +209,11 @@ void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows,
 {
     if (w > RT_GRID_MAX || h > RT_GRID_MAX || cols > w + 1 || rows > h + 1)
         return;
-    ss_fill(dst, stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_clamped(c00),
-            ss_rgb_clamped(c10), ss_rgb_clamped(c01), ss_rgb_clamped(c11));
+    rt_color c[4] = {c00, c10, c01, c11};
+    for (int i = 0; i < 4; i++)
+        c[i] = v3(r_clamp(c[i].x, 0, R_ONE), r_clamp(c[i].y, 0, R_ONE), r_clamp(c[i].z, 0, R_ONE));
+    const rt_color *const k[4] = {&c[0], &c[1], &c[2], &c[3]};
+    ss_fill(dst, stride, w, h, cols, rows, k);
 }
 
 /* One frame's adaptive rendering state. */
@@ -217,13 +257,11 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out) { ss_shade(c, x, y, out, NULL); }
 
-/* The sample at pixel (x, y) of the current square, traced on first use. */
-static const rt_sample *ss_at(ss_ctx *c, int x, int y)
+/* The sample sm of the current square's lattice, the point (x, y): traced on first use. */
+static inline void ss_need(ss_ctx *c, int x, int y, rt_sample *sm)
 {
-    rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
     if (sm->nhits == 0)
         ss_trace(c, x, y, sm);
-    return sm;
 }
 
 /* Probe mode: the point (x, y) a split adds, not decided yet, with its context k
@@ -270,53 +308,84 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
         ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
-/* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level`. It writes the
- * pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its right column and bottom row where it
- * ends the frame (own_r, own_b). Every pixel is thus written once, whatever the order. */
-static void ss_square(ss_ctx *c, int x0, int y0, int w, int h, int level, int own_r, int own_b)
+/* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
+ * four unit squares would do in ss_square, without the calls. They trace the five points
+ * between the corners, in this order, and each shows its (0, 0) as the fill shows a corner. */
+static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
 {
-    const rt_sample *k[4] = {ss_at(c, x0, y0), ss_at(c, x0 + w, y0), ss_at(c, x0, y0 + h),
-                             ss_at(c, x0 + w, y0 + h)};
+    const int ls = c->lstride, stride = c->stride;
+    uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
+    rt_sample *m = sm + ls;
+    ss_need(c, x0 + 1, y0, sm + 1);
+    ss_need(c, x0, y0 + 1, m);
+    ss_need(c, x0 + 1, y0 + 1, m + 1);
+    ss_need(c, x0 + 2, y0 + 1, m + 2);
+    ss_need(c, x0 + 1, y0 + 2, m + ls + 1);
+    row[0] = ss_pixel(&sm->color);
+    row[1] = ss_pixel(&sm[1].color);
+    row[stride] = ss_pixel(&m->color);
+    row[stride + 1] = ss_pixel(&m[1].color);
+}
+
+/* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
+ * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
+ * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
+ * thus written once, whatever the order. */
+static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, int level, int own)
+{
+    const int ls = c->lstride;
+    rt_sample *k2 = sm + h * ls;
+    ss_need(c, x0, y0, sm);
+    ss_need(c, x0 + w, y0, sm + w);
+    ss_need(c, x0, y0 + h, k2);
+    ss_need(c, x0 + w, y0 + h, k2 + w);
     if (w > 1 || h > 1) { /* some pixel is not a corner */
         int li = level < RT_GRID_LEVELS ? level : RT_GRID_LEVELS - 1;
-        c->stats->squares[li]++;
+        rt_stats *st = c->stats;
+        st->squares[li]++;
+        const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
         if (why != RT_SPLIT_NONE) {
-            c->stats->split[li]++;
-            c->stats->split_by[why]++;
-            int xs[3] = {x0, x0 + w, x0 + w}, ys[3] = {y0, y0 + h, y0 + h};
-            int nx = 1, ny = 1;
-            if (w >= 2) {
-                xs[1] = x0 + w / 2;
-                nx = 2;
-            }
-            if (h >= 2) {
-                ys[1] = y0 + h / 2;
-                ny = 2;
-            }
+            st->split[li]++;
+            st->split_by[why]++;
+            int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
-            for (int j = 0; j < ny; j++)
-                for (int i = 0; i < nx; i++)
-                    ss_square(c, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j], level + 1,
-                              i == nx - 1 && own_r, j == ny - 1 && own_b);
+            if (w == 2 && h == 2 && !own) {
+                ss_quad(c, sm, x0, y0);
+                return;
+            }
+            int hw = w / 2, hh = h / 2;
+            if (nx == 2 && ny == 2) { /* the four halves, row by row */
+                rt_sample *sb = sm + hh * ls;
+                ss_square(c, sm, x0, y0, hw, hh, level + 1, 0);
+                ss_square(c, sm + hw, x0 + hw, y0, w - hw, hh, level + 1, own & 1);
+                ss_square(c, sb, x0, y0 + hh, hw, h - hh, level + 1, own & 2);
+                ss_square(c, sb + hw, x0 + hw, y0 + hh, w - hw, h - hh, level + 1, own);
+            } else if (nx == 2) { /* left and right halves of a square 0 or 1 high */
+                ss_square(c, sm, x0, y0, hw, h, level + 1, own & 2);
+                ss_square(c, sm + hw, x0 + hw, y0, w - hw, h, level + 1, own);
+            } else { /* top and bottom halves of a square 0 or 1 wide */
+                rt_sample *sb = sm + hh * ls;
+                ss_square(c, sm, x0, y0, w, hh, level + 1, own & 1);
+                ss_square(c, sb, x0, y0 + hh, w, h - hh, level + 1, own);
+            }
             return;
         }
     }
-    int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
+    int cols = w + (own & 1), rows = h + (own >> 1 & 1);
     uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    ss_fill(dst, c->stride, w, h, cols, rows, ss_wq[w], ss_wq[h], ss_rgb_of(k[0]->color),
-            ss_rgb_of(k[1]->color), ss_rgb_of(k[2]->color), ss_rgb_of(k[3]->color));
+    const rt_color *const kc[4] = {&sm->color, &sm[w].color, &k2->color, &k2[w].color};
+    ss_fill(dst, c->stride, w, h, cols, rows, kc);
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
      * lie on the edges this square shares with squares done before it: its top row and left
      * column (nothing is ever traced inside a square that is not split). */
-    const rt_sample *sm = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     for (int i = 1; i < cols; i++)
         if (sm[i].nhits)
             dst[i] = rt_color_pixel(sm[i].color);
     for (int j = 1; j < rows; j++)
-        if (sm[j * c->lstride].nhits)
-            dst[(long)j * c->stride] = rt_color_pixel(sm[j * c->lstride].color);
+        if (sm[j * ls].nhits)
+            dst[(long)j * c->stride] = rt_color_pixel(sm[j * ls].color);
 }
 
 /* Traces the top-level corners of row y into row[0..ncols]. */
@@ -359,7 +428,9 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
     rt_sample *top = work, *bot = top + ncols + 1;
-    c.lat = bot + ncols + 1;
+    rt_sample *const lat = bot + ncols + 1;
+    const int ls = c.lstride;
+    c.lat = lat;
     if (r0 % 2) {
         top = bot;
         bot = work;
@@ -377,19 +448,29 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         for (int i = 0; i < ncols; i++) {
             int x0 = ss_corner(i, g, width), w = ss_corner(i + 1, g, width) - x0;
             c.sx = x0;
-            for (int ly = 0; ly <= h; ly++) {
-                rt_sample *row = c.lat + ly * c.lstride;
-                /* The left edge is the square before's right edge: keep what it traced. */
-                if (prev_w >= 0)
+            rt_sample *row = lat, *hrow = lat + h * ls; /* the lattice's rows 0 and h */
+            for (int ly = 0; ly <= h; ly++, row += ls) {
+                /* The left edge is the square before's right edge: keep what it traced (its
+                 * corners too: they are top[i] and bot[i], copied there before). */
+                if (prev_w >= 0 && row[prev_w].nhits)
                     row[0] = row[prev_w];
-                for (int lx = prev_w >= 0 ? 1 : 0; lx <= w; lx++)
-                    row[lx].nhits = 0;
+                else
+                    row[0].nhits = 0;
+                rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
+                for (; q < e; q += 2) {
+                    q[0].nhits = 0;
+                    q[1].nhits = 0;
+                }
+                if (q == e)
+                    q->nhits = 0;
             }
-            c.lat[0] = top[i];
-            c.lat[w] = top[i + 1];
-            c.lat[h * c.lstride] = bot[i];
-            c.lat[h * c.lstride + w] = bot[i + 1];
-            ss_square(&c, x0, y0, w, h, 0, i == ncols - 1, r == nrows - 1);
+            if (prev_w < 0) {
+                lat[0] = top[i];
+                hrow[0] = bot[i];
+            }
+            lat[w] = top[i + 1];
+            hrow[w] = bot[i + 1];
+            ss_square(&c, lat, x0, y0, w, h, 0, (i == ncols - 1) | (r == nrows - 1) << 1);
             prev_w = w;
         }
         rt_sample *t = top;

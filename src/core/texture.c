@@ -10,22 +10,19 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real fo
     if (tx->kind == RT_TEX_NONE)
         return m->diffuse;
 
-    vec3 q = v3_scale(p, tx->scale);
-    switch (tx->kind) {
-    case RT_TEX_CHECKER: {
+    /* q = p * scale has |q| <= 20000 (the parser bounds the texture scale by the farthest point
+     * the material can be seen at): the products need no range check (docs/numerics.md) */
+    if (tx->kind == RT_TEX_CHECKER) {
         /* Cells are centred on lattice points, so the faces of cells lie at half-integers and
-         * a plane through the origin never sits on a boundary. */
-        int32_t i, j, k;
-        r_floor_split(r_add(q.x, R(0.5)), &i);
-        r_floor_split(r_add(q.y, R(0.5)), &j);
-        r_floor_split(r_add(q.z, R(0.5)), &k);
+         * a plane through the origin never sits on a boundary: the cell is floor(q + 1/2). */
+        int32_t i = r_mul_round_in(p.x, tx->scale), j = r_mul_round_in(p.y, tx->scale),
+                k = r_mul_round_in(p.z, tx->scale);
         /* Which cell, up to three cells away: two corners on cells of the same colour but
          * different cells have a cell of the other colour between them. */
         *cell = (uint8_t)(1 + ((i & 3) | (j & 3) << 2 | (k & 3) << 4));
         return ((i + j + k) & 1) ? tx->color2 : m->diffuse;
     }
-    default: break;
-    }
+    vec3 q = v3(r_mul_in(p.x, tx->scale), r_mul_in(p.y, tx->scale), r_mul_in(p.z, tx->scale));
     if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) == 0)
         return m->diffuse; /* a compiled-in scene without noise textures links no noise code */
     int octaves = max_octaves > 0 && max_octaves < tx->octaves ? max_octaves : tx->octaves;
