@@ -478,7 +478,7 @@ static void test_sample_record(void **state)
     assert_int_equal(sm.nhits, 1);
     assert_int_equal(sm.hits[0].object, 0);
     assert_int_equal(sm.hits[0].level, 0);
-    assert_int_equal(sm.light_state[0], 2);
+    assert_int_equal(rt_light_state(&sm, 0), 2);
     /* corner pixel: background */
     rt_trace_pixel(&s, &v, &prm, 0, 0, &st, &sm);
     assert_int_equal(sm.nhits, 1);
@@ -494,7 +494,7 @@ static void test_sample_record(void **state)
     rt_view_init(&v, &s.camera, 64, 64);
     rt_trace_pixel(&s, &v, &prm, 32, 32, &st, &sm);
     assert_int_equal(sm.hits[0].object, 0);
-    assert_int_equal(sm.light_state[0], 0);
+    assert_int_equal(rt_light_state(&sm, 0), 0);
 
     /* look at the mirror sphere from the side: level 0 is the mirror, level 1 what it shows */
     s.camera = (rt_camera){vd(0, 0, 6), vd(0, 0, 2), vd(0, 1, 0), R(40.0)};

@@ -34,8 +34,7 @@ static rt_sample base_sample(void)
     memset(&s, 0, sizeof s);
     s.color = vd(0.5, 0.5, 0.5);
     s.nhits = 2;
-    s.light_state[0] = 1;
-    s.light_state[1] = 1;
+    s.lights = 1 | 1 << 2; /* lights 0 and 1 lit */
     s.hits[0] = (rt_hit_rec){.object = 1, .level = 0, .contrib = {100, 120, 140}};
     s.hits[1] = (rt_hit_rec){.object = 2, .level = 1, .contrib = {30, 30, 30}};
     return s;
@@ -72,10 +71,10 @@ static void test_criteria(void **state)
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
         /* 2. any light's state: shadow edge, highlight */
         s = base_sample();
-        s.light_state[1] = 0;
+        s.lights = 1; /* light 1 unlit */
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
         s = base_sample();
-        s.light_state[0] = 2;
+        s.lights = 2 | 1 << 2; /* a highlight of light 0 */
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
         /* 3. an object at a secondary level, or the shape of the ray tree */
         s = base_sample();
@@ -115,7 +114,7 @@ static void test_criteria(void **state)
         s.hits[1].object = 4;
         s.hits[0].contrib[0] = 0;
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
-        s.light_state[0] = 0;
+        s.lights = 1 << 2; /* light 0 unlit */
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
         s.hits[0].object = 7;
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);

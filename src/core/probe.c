@@ -1,23 +1,32 @@
 /* probe.c: probe mode: a point that splitting a square adds is probed (nearest hits, light states, no shading) and shaded in full only where its neighbours cannot give its colour. */
-#include <string.h>
-
 #include "rt.h"
 
-/* Do the samples k[i] with bit i set in `set` (all of one shape) have contributions within thr8
- * of each other at every stored node? */
+/* Do the samples k[i] with bit i set in `set` (all of one record) have contributions within
+ * thr8 of each other at every stored node? */
 static int probe_agree(int n, const rt_sample *const k[], unsigned set, int thr8)
 {
-    int first = 0;
-    while (!(set & (1u << first)))
-        first++;
-    int nodes = k[first]->nhits < RT_SAMPLE_MAX_HITS ? k[first]->nhits : RT_SAMPLE_MAX_HITS;
+    const rt_sample *g[4];
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (set & (1u << i))
+            g[m++] = k[i];
+    if (m == 2) { /* the common case: one difference per channel */
+        const rt_sample *a = g[0], *b = g[1];
+        int nodes = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+        for (int j = 0; j < nodes; j++)
+            for (int ch = 0; ch < 3; ch++) {
+                int d = a->hits[j].contrib[ch] - b->hits[j].contrib[ch];
+                if (d > thr8 || d < -thr8)
+                    return 0;
+            }
+        return 1;
+    }
+    int nodes = g[0]->nhits < RT_SAMPLE_MAX_HITS ? g[0]->nhits : RT_SAMPLE_MAX_HITS;
     for (int j = 0; j < nodes; j++)
         for (int ch = 0; ch < 3; ch++) {
-            int lo = 255, hi = 0;
-            for (int i = first; i < n; i++) {
-                if (!(set & (1u << i)))
-                    continue;
-                int v = k[i]->hits[j].contrib[ch];
+            int lo = g[0]->hits[j].contrib[ch], hi = lo;
+            for (int i = 1; i < m; i++) {
+                int v = g[i]->hits[j].contrib[ch];
                 lo = v < lo ? v : lo;
                 hi = v > hi ? v : hi;
             }
@@ -54,34 +63,43 @@ static int probe_same_tree(const rt_sample *a, const rt_sample *b)
 
 int rt_probe_same(const rt_sample *a, const rt_sample *b)
 {
-    return a->hits[0].object == b->hits[0].object && a->cell == b->cell &&
-        memcmp(a->light_state, b->light_state, sizeof a->light_state) == 0 && probe_same_tree(a, b);
+    return a->hits[0].object == b->hits[0].object && a->cell == b->cell && a->lights == b->lights &&
+        probe_same_tree(a, b);
 }
 
-/* Does the colour at r depend on what no record holds, so that neighbours cannot give it: a
- * texture at a secondary hit (a checkerboard through glass or in a mirror), nodes beyond those
- * stored, or a highlight (its peak lies anywhere between samples)? */
-static int probe_unseen(const rt_scene *s, const rt_sample *r)
+/* Is the primary hit of r on a noise texture (which varies between any two points)? */
+static int probe_noise(const rt_scene *s, const rt_sample *r)
 {
-    if (r->nhits > RT_SAMPLE_MAX_HITS)
-        return 1;
+    int id = r->hits[0].object;
+    return id != RT_NO_OBJECT && rt_scene_has(s, RT_FX_NOISE) &&
+        s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
+}
+
+/* Bits of rt_sample.lights set where a light's state is 2 (highlight). */
+#define PROBE_HIGHLIGHTS 0xAAu
+
+unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *r)
+{
+    /* A noise texture at the primary hit, nodes beyond those stored, a highlight (its peak
+     * lies anywhere between samples), or a texture at a secondary hit (a checkerboard through
+     * glass or in a mirror): the colour depends on what no record holds. */
+    if (probe_noise(s, r) || r->nhits > RT_SAMPLE_MAX_HITS || (r->lights & PROBE_HIGHLIGHTS))
+        return RT_SAMPLE_OPAQUE;
     for (int j = 1; j < r->nhits; j++) {
         int o = r->hits[j].object;
         if (o != RT_NO_OBJECT && s->materials[s->objects[o].material].tex.kind != RT_TEX_NONE)
-            return 1;
+            return RT_SAMPLE_OPAQUE;
     }
-    for (int l = 0; l < RT_MAX_LIGHTS; l++)
-        if (r->light_state[l] == 2)
-            return 1;
     return 0;
 }
 
-/* Bit i set for each context sample k[i] of the set `in` whose record is r's. */
+/* Bit i set for each context sample k[i] of the set `in` whose record is r's (their primary
+ * object and cell are r's already). */
 static unsigned probe_matches(int n, const rt_sample *const k[], unsigned in, const rt_sample *r)
 {
     unsigned m = 0;
     for (int i = 0; i < n; i++)
-        if ((in & (1u << i)) && rt_probe_same(r, k[i]))
+        if ((in & (1u << i)) && k[i]->lights == r->lights && probe_same_tree(r, k[i]))
             m |= 1u << i;
     return m;
 }
@@ -95,74 +113,82 @@ static int probe_first(unsigned set)
     return i;
 }
 
-/* Is the primary hit of r on a noise texture (which varies between any two points)? */
-static int probe_noise(const rt_scene *s, const rt_sample *r)
-{
-    int id = r->hits[0].object;
-    return id != RT_NO_OBJECT && rt_scene_has(s, RT_FX_NOISE) &&
-        s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
-}
-
-/* Adds a probe's rays to st. */
-static void probe_count(rt_stats *st, const rt_stats *ps)
-{
-    st->probe_shadow += ps->rays_shadow;
-    st->probe_secondary += ps->rays_reflect + ps->rays_refract;
-    st->shadow_tests += ps->shadow_tests;
-}
-
 int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
-                   int x, int y, int n, const rt_sample *const k[], real tx, real ty, int span,
-                   rt_sample *out)
+                   int x, int y, int n, const rt_sample *const k[], enum rt_split_reason why,
+                   real tx, real ty, int span, rt_primary *pri, rt_sample *out)
 {
+    pri->id = RT_PRIMARY_UNKNOWN;
     /* 0. No probe where its answer cannot matter: a point whose record is a context sample's
      * gets that sample's verdict, one with a new record is shaded. So when every context sample
-     * is on noise or probe_unseen, or all have one record whose contributions disagree, shade. */
-    unsigned never = 0, same = 0;
-    for (int i = 0; i < n; i++) {
-        never += probe_noise(s, k[i]) || probe_unseen(s, k[i]);
-        same += rt_probe_same(k[0], k[i]);
-    }
-    if (never == (unsigned)n || (same == (unsigned)n && !probe_agree(n, k, (1u << n) - 1, thr8)))
+     * is opaque (rt_probe_opaque), or all have one record whose contributions disagree, shade.
+     * The four corners of a square have that when it was split for its contributions alone. */
+    unsigned opaque = k[0]->flags & k[1]->flags;
+    if (n == 4)
+        opaque &= k[2]->flags & k[3]->flags;
+    if ((opaque & RT_SAMPLE_OPAQUE) ||
+        (n == 4 ? why == RT_SPLIT_CONTRIB
+                : rt_probe_same(k[0], k[1]) && !probe_agree(2, k, 3u, thr8)))
+        return 0;
+    /* Nor on an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object, cell or
+     * light states: the point's record could then be one end's at most, and one is not enough
+     * there. */
+    if (n == 2 && span > RT_PROBE_ONE_SPAN &&
+        (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell ||
+         k[0]->lights != k[1]->lights))
         return 0;
 
-    /* 1. The primary hit and its checker cell; a noise texture there ends the probe. */
-    rt_sample pr;
-    rt_stats ps = {0};
+    /* 1. The primary hit and its checker cell (into out, scratch until the end); a noise
+     * texture there ends the probe. Its primary ray is kept in *pri for what follows. */
     st->probes++;
-    rt_probe_pixel(s, v, p, x, y, 0, &ps, &pr);
-    probe_count(st, &ps);
-    if (probe_noise(s, &pr))
+    rt_probe_pixel(s, v, p, x, y, 0, pri, st, out);
+    if (probe_noise(s, out))
         return 0;
-    int id = pr.hits[0].object;
+    int id = out->hits[0].object;
+    uint8_t cell = out->cell;
     unsigned m = 0;
     for (int i = n - 1; i >= 0; i--)
-        m = m << 1 | (k[i]->hits[0].object == id && k[i]->cell == pr.cell ? 1u : 0);
+        m = m << 1 | (k[i]->hits[0].object == id && k[i]->cell == cell ? 1u : 0);
     if (!m)
         return 0; /* something new */
 
-    /* 2. The whole record (every light's state, the ray tree) where the context disagrees on
-     * a light (a shadow or highlight edge crosses it) or the surface casts secondary rays (what
-     * they meet can change anywhere); elsewhere the matching sample's record is the point's. */
+    /* 2. The light states where the context disagrees on a light (a shadow or highlight edge
+     * crosses it), the ray tree where the surface casts secondary rays (what they meet can
+     * change anywhere) unless the context is an edge whose ends have one record; elsewhere the
+     * matching sample's record is the point's. */
     const rt_sample *f = k[probe_first(m)];
-    int deep = f->nhits > 1;
+    int lights = 0;
     for (int i = 0; i < n; i++)
-        deep |= memcmp(k[i]->light_state, f->light_state, sizeof f->light_state) != 0;
-    *out = *f;
+        lights |= k[i]->lights != f->lights;
+    int deep = lights || (f->nhits > 1 && !(n == 2 && m == 3u && probe_same_tree(k[0], k[1])));
     if (deep) {
-        rt_stats ps2 = {0};
-        rt_probe_pixel(s, v, p, x, y, 1, &ps2, out);
-        probe_count(st, &ps2);
-        out->cell = pr.cell;
+        /* Its rays beyond the primary one are the probe's: moved to probe_shadow and
+         * probe_secondary (their object tests stay in shadow_tests). */
+        uint32_t sh = st->rays_shadow, rl = st->rays_reflect, rr = st->rays_refract;
+        rt_probe_pixel(s, v, p, x, y, lights ? RT_PROBE_WHOLE : RT_PROBE_TREE, pri, st, out);
+        if (!lights)
+            out->lights = f->lights;
+        st->probe_shadow += st->rays_shadow - sh;
+        st->probe_secondary += (st->rays_reflect - rl) + (st->rays_refract - rr);
+        st->rays_shadow = sh;
+        st->rays_reflect = rl;
+        st->rays_refract = rr;
+        out->cell = cell;
         m = probe_matches(n, k, m, out);
+        if (!m)
+            return 0;
+        f = k[probe_first(m)];
+    } else {
+        *out = *f;
     }
 
     /* 3. Interpolation stands in where two samples or more have the point's record, or one
      * next to it (at most RT_PROBE_ONE_SPAN pixels across the context); where the colour
-     * depends on nothing the record misses (probe_unseen); and where those samples'
+     * depends on nothing the record misses (f is not opaque: f's record is the point's, and f
+     * is on no noise texture, having its primary object); and where those samples'
      * contributions agree. */
-    if (!m || (!(m & (m - 1)) && span > RT_PROBE_ONE_SPAN) || probe_unseen(s, out) ||
-        !probe_agree(n, k, m, thr8))
+    int single = !(m & (m - 1));
+    if ((single && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
+        (!single && !probe_agree(n, k, m, thr8)))
         return 0;
 
     /* The colour: along x within each row of the context, then between the rows. */
@@ -171,10 +197,13 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
     if (n == 4)
         col = probe_mix(col, probe_mix(k[2]->color, k[3]->color, bot, tx),
                         (top ? 1u : 0) | (bot ? 2u : 0), ty);
-    f = k[probe_first(m)];
-    for (int j = 0; j < RT_SAMPLE_MAX_HITS; j++)
-        memcpy(out->hits[j].contrib, f->hits[j].contrib, sizeof out->hits[j].contrib);
+    if (deep) {
+        int nodes = out->nhits < RT_SAMPLE_MAX_HITS ? out->nhits : RT_SAMPLE_MAX_HITS;
+        for (int j = 0; j < nodes; j++)
+            for (int ch = 0; ch < 3; ch++)
+                out->hits[j].contrib[ch] = f->hits[j].contrib[ch];
+    }
     out->color = col;
-    out->probed = 1;
+    out->flags = RT_SAMPLE_PROBED;
     return 1;
 }

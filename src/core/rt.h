@@ -157,15 +157,27 @@ typedef struct rt_hit_rec {
 } rt_hit_rec;
 
 /* Everything traced for one image point: the record adaptive subsampling compares. Kept
- * small (60 bytes) because a row of squares' worth of them is the working storage. */
+ * small (56 bytes) because a row of squares' worth of them is the working storage. */
 typedef struct rt_sample {
     rt_color color;
-    uint8_t nhits; /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
-    uint8_t light_state[RT_MAX_LIGHTS]; /* at the primary hit: 0 unlit, 1 lit, 2 highlight */
+    uint8_t nhits;  /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
+    uint8_t lights; /* at the primary hit, 2 bits per light (rt_light_state): one compare */
     uint8_t cell;   /* texture cell at the primary hit (checker), 0 for other textures */
-    uint8_t probed; /* probe mode: 1 when the colour was reconstructed from a probe, not shaded */
+    uint8_t flags;  /* probe mode: RT_SAMPLE_PROBED, RT_SAMPLE_OPAQUE (0 in other modes) */
     rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
 } rt_sample;
+
+#if RT_MAX_LIGHTS > 4
+#error "rt_sample.lights holds the states of at most 4 lights"
+#endif
+/* rt_sample.flags: the colour was reconstructed from a probe, not shaded */
+#define RT_SAMPLE_PROBED 1u
+/* rt_sample.flags: a shaded sample whose record cannot stand for its neighbours' colours (on a
+ * noise texture, a texture beyond the primary hit, a highlight: rt_probe_opaque) */
+#define RT_SAMPLE_OPAQUE 2u
+
+/* Light i's state at a sample's primary hit: 0 unlit, 1 lit, 2 highlight. */
+static inline int rt_light_state(const rt_sample *sm, int i) { return sm->lights >> (2 * i) & 3; }
 
 /* Adaptive subsampling: square sizes are powers of two up to RT_GRID_MAX; level 0 is the
  * --grid square, level k its halves k times over. */
@@ -280,14 +292,36 @@ dir3 rt_view_ray(const rt_view *v, int x, int y);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
+/* A pixel's primary ray and its nearest hit: found by the first probe of the pixel and reused
+ * by the next probe or the full shade of the same pixel (probe mode), which then cast no primary
+ * ray of their own. */
+typedef struct rt_primary {
+    dir3 d; /* the ray's direction, rt_view_ray */
+    real t; /* distance to the hit (id >= 0) */
+    int id; /* object hit, -1 none, RT_PRIMARY_UNKNOWN: not traced yet */
+} rt_primary;
+#define RT_PRIMARY_UNKNOWN (-2)
+
+/* What rt_probe_pixel finds beyond the primary hit (`whole`). */
+#define RT_PROBE_WHOLE 1 /* the ray tree and the light states */
+#define RT_PROBE_TREE 2  /* the ray tree alone */
+
 /* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
- * its cost. With `whole`: nhits, each stored node's object and level and the primary hit's
- * light states (nearest hits along the same ray tree, shadow rays at the primary hit only; cell
- * 0); without: the primary object and its checker cell alone (nhits = 1, light states 0).
+ * its cost. With `whole` RT_PROBE_WHOLE: nhits, each stored node's object and level and the
+ * primary hit's light states (nearest hits along the same ray tree, shadow rays at the primary
+ * hit only; cell 0); RT_PROBE_TREE: the same without light states (0, no shadow ray); 0: the
+ * primary object and its checker cell alone (nhits = 1, light states 0).
  * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
- * Counts its rays in *stats as rt_trace_pixel does. */
+ * *pri: with id RT_PRIMARY_UNKNOWN the primary ray is traced and *pri gets it; otherwise *pri is
+ * taken as the pixel's (a probe of the same pixel found it). Counts the rays it casts beyond the
+ * primary one in *stats as rt_trace_pixel does (not rays_primary). */
 void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    int whole, rt_stats *stats, rt_sample *out);
+                    int whole, rt_primary *pri, rt_stats *stats, rt_sample *out);
+
+/* rt_trace_pixel (the same record, colour and stats) for a pixel whose primary ray and hit a
+ * probe may have found: *pri as rt_probe_pixel takes it (RT_PRIMARY_UNKNOWN: traced here). */
+void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                         rt_primary *pri, rt_stats *stats, rt_sample *out);
 
 /* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
@@ -357,24 +391,31 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
 /* Probe mode (probe.c), for a point (x, y) that splitting a square adds: probes it
  * (rt_probe_pixel) and compares its record with its n context samples k[]: the ends of the
  * edge it lies on (n = 2, the point at fraction tx from k[0] to k[1]) or the corners of the
- * square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty));
- * `span` is the context's size in pixels (the edge's length, the square's larger side).
+ * square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty);
+ * `why` is rt_corners_differ's verdict on them); `span` is the context's size in pixels (the
+ * edge's length, the square's larger side).
  * Returns 1 when the point's colour can be reconstructed: two or more context samples have
  * its record (rt_probe_same), or one and span <= RT_PROBE_ONE_SPAN; the record is on no noise
  * texture, meets no texture beyond the primary hit, has no highlight; and those samples'
  * contributions agree within thr8 (1/255 steps). *out then gets the probe's record, the colour
  * interpolated from those samples alone (along x within each row of the context, then between
  * the rows; a row with one matching sample gives its colour), the contributions of the first
- * of them and probed = 1. Returns 0 when the point must be shaded in full (*out is then
- * scratch). Counts probes and their rays in st->probes, probe_shadow and probe_secondary. */
+ * of them and flags RT_SAMPLE_PROBED. Returns 0 when the point must be shaded in full (*out is
+ * then scratch): *pri then holds the primary ray and hit if a probe found them
+ * (rt_trace_pixel_from), else id RT_PRIMARY_UNKNOWN. Counts probes and their rays in
+ * st->probes, probe_shadow and probe_secondary. */
 #define RT_PROBE_ONE_SPAN 4
 int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
-                   int x, int y, int n, const rt_sample *const k[], real tx, real ty, int span,
-                   rt_sample *out);
+                   int x, int y, int n, const rt_sample *const k[], enum rt_split_reason why,
+                   real tx, real ty, int span, rt_primary *pri, rt_sample *out);
 
 /* Do two records have the same shape: primary object and cell, light states, and the objects
  * and levels of the ray tree (what rt_corners_differ compares before contributions)? */
 int rt_probe_same(const rt_sample *a, const rt_sample *b);
+
+/* Probe mode: RT_SAMPLE_OPAQUE for a shaded sample whose record cannot stand for the colour of
+ * a neighbour with the same record (rt_probe_point would never interpolate from it), else 0. */
+unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *sm);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -39,7 +39,7 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
         if (k[i]->hits[0].object != a->hits[0].object || k[i]->cell != a->cell)
             return RT_SPLIT_OBJECT;
     for (int i = 1; i < 4; i++)
-        if (memcmp(k[i]->light_state, a->light_state, sizeof a->light_state) != 0)
+        if (k[i]->lights != a->lights)
             return RT_SPLIT_LIGHT;
     int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
     for (int i = 1; i < 4; i++) {
@@ -233,10 +233,19 @@ typedef struct ss_ctx {
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
-static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
+/* Shades the point (x, y) in full into *out (in probe mode from the primary hit a probe found,
+ * *pri, if not NULL), clamps its colour, marks it, and in probe mode sets its flags. */
+static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
-    rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
-    out->probed = 0;
+    if (RT_COMPILED_PROBE && pri) {
+        rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
+        out->flags = (uint8_t)rt_probe_opaque(c->scene, out);
+    } else {
+        rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
+        out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
+            ? (uint8_t)rt_probe_opaque(c->scene, out)
+            : 0;
+    }
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
@@ -246,6 +255,8 @@ static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out)
         __atomic_store_n(&c->traced[(long)y * c->view->width + x], 1, __ATOMIC_RELAXED);
 }
 
+static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out) { ss_shade(c, x, y, out, NULL); }
+
 /* The sample sm of the current square's lattice, the point (x, y): traced on first use. */
 static inline void ss_need(ss_ctx *c, int x, int y, rt_sample *sm)
 {
@@ -253,42 +264,48 @@ static inline void ss_need(ss_ctx *c, int x, int y, rt_sample *sm)
         ss_trace(c, x, y, sm);
 }
 
-/* Probe mode: the point (x, y) a split adds, with its context k (rt_probe_point); probed, and
- * shaded in full only when rt_probe_point cannot give its colour. A point some square added
- * before is kept: it got its record from the same context (the ends of its edge), so the frame
- * does not depend on the order squares are visited in. */
+/* Probe mode: the point (x, y) a split adds, not decided yet, with its context k
+ * (rt_probe_point); probed, and shaded in full only when rt_probe_point cannot give its
+ * colour. */
 static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
-                                                   const rt_sample *const k[], real tx, real ty,
+                                                   const rt_sample *const k[],
+                                                   enum rt_split_reason why, real tx, real ty,
                                                    int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
-    if (sm->nhits)
-        return;
-    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, tx, ty, span,
-                       sm)) {
+    rt_primary pri;
+    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, why, tx, ty,
+                       span, &pri, sm)) {
         if (c->traced)
             __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
-    } else {
-        ss_trace(c, x, y, sm);
+        return;
     }
+    ss_shade(c, x, y, sm, &pri); /* in full, from the primary hit if the probe found it */
 }
 
 /* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
  * corners): the middles of the edges it halves, each against the ends of its edge, and the
- * centre against the four corners. */
+ * centre against the four corners. A point some square added before is kept: it got its record
+ * from the same context (the ends of its edge), so the frame does not depend on the order
+ * squares are visited in. */
 static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
-                                                     int nx, int ny, const rt_sample *const k[4])
+                                                     int nx, int ny, const rt_sample *const k[4],
+                                                     enum rt_split_reason why)
 {
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
     int xm = x0 + w / 2, ym = y0 + h / 2;
+    /* the lattice at (x0, y0): a point already decided (nhits) is kept */
+    const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
-        ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, tx, 0, w);
+        if (!at[j * h * c->lstride + w / 2].nhits)
+            ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
     for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
         const rt_sample *kk[2] = {k[i], k[i + 2]};
-        ss_probe_new(c, x0 + i * w, ym, 2, kk, ty, 0, h);
+        if (!at[h / 2 * c->lstride + i * w].nhits)
+            ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
     }
-    if (nx == 2 && ny == 2)
-        ss_probe_new(c, xm, ym, 4, k, tx, ty, w > h ? w : h);
+    if (nx == 2 && ny == 2 && !at[h / 2 * c->lstride + w / 2].nhits)
+        ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
 /* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
@@ -333,7 +350,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             st->split_by[why]++;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
-                ss_probe_split(c, x0, y0, w, h, nx, ny, k);
+                ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
             if (w == 2 && h == 2 && !own) {
                 ss_quad(c, sm, x0, y0);
                 return;

@@ -1,4 +1,6 @@
 /* trace.c: Whitted ray tracing: nearest hit, hard shadows, Phong shading, reflection, refraction. */
+#include <stddef.h>
+
 #include "rt.h"
 
 /* State of one traced image point, threaded through the recursion. */
@@ -9,8 +11,13 @@ typedef struct trace_ctx {
     real min_contrib; /* adaptive recursion control */
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     real pixel;       /* a pixel's footprint per unit of ray length, 0 = footprint off */
-    int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
-    int probe; /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record */
+    /* How the primary ray finds its hit: 0 rt_nearest_but, 1 rt_nearest_primary (the view's eye
+     * is the prepared one, eye_at), 2 through `pri` (trace_first) */
+    int eye_prepared;
+    /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record, 3 the record
+     * without light states */
+    int probe;
+    rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -46,6 +53,28 @@ static __attribute__((noinline)) rt_color trace_probe_hit(trace_ctx *c, const rt
 }
 #else
 #define trace_probe_hit(c, m, p, id) ((c)->scene->background)
+#endif
+
+#if RT_COMPILED_PROBE
+/* Probe mode's primary hit (eye_prepared 2): the one a probe of this pixel found (c->pri), or
+ * found here and kept there. Out of line, off the other modes' path. */
+static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d, real *t)
+{
+    rt_primary *pri = c->pri;
+    if (pri->id == RT_PRIMARY_UNKNOWN) {
+        const rt_scene *s = c->scene;
+        int prepared = org.x == s->eye_at.x && org.y == s->eye_at.y && org.z == s->eye_at.z;
+        pri->t = 0;
+        pri->id = prepared ? rt_nearest_primary(s, d, &pri->t)
+                           : rt_nearest_but(s, org, d, R_T_MAX, -1, &pri->t);
+    }
+    *t = pri->t;
+    return pri->id;
+}
+#define TRACE_FIRST(c) ((c)->eye_prepared == 2)
+#else
+#define trace_first(c, org, d, t) (-1)
+#define TRACE_FIRST(c) 0
 #endif
 
 /* What one hit point looks like to the lights (trace_light's input). */
@@ -138,8 +167,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 {
     const rt_scene *s = c->scene;
     real t;
-    int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
-                                           : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
+    int id = level > 0 || !c->eye_prepared ? rt_nearest_but(s, org, d, R_T_MAX, from, &t)
+        : TRACE_FIRST(c)                   ? trace_first(c, org, d, &t)
+                                           : rt_nearest_primary(s, d, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
         return s->background;
@@ -174,12 +204,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         c->sample->cell = cell;
     rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
     trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
-    int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
-    for (int i = 0; i < nlights; i++) {
-        uint8_t state = trace_light(c, &h, i, &col);
-        if (level == 0)
-            c->sample->light_state[i] = state;
-    }
+    int nlights = TRACE_PROBE(c) && (level > 0 || c->probe == 3) ? 0 : s->nlights;
+    unsigned lights = 0;
+    for (int i = 0; i < nlights; i++)
+        lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
+    if (level == 0)
+        c->sample->lights = (uint8_t)lights;
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
     trace_record(c, id, level, weight == R_ONE ? col : c3_scale(col, weight));
 
@@ -221,40 +251,61 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     return col;
 }
 
-/* Shared by rt_trace_pixel and rt_probe_pixel; without probe mode (RT_COMPILED_PROBE) inlined
- * into rt_trace_pixel, its only caller. */
-#if RT_COMPILED_PROBE
-#define TRACE_POINT static
-#else
-#define TRACE_POINT static inline __attribute__((always_inline))
-#endif
-TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                             rt_stats *stats, rt_sample *out, int probe)
+/* Shared by rt_trace_pixel, rt_trace_pixel_from and rt_probe_pixel: inlined into rt_trace_pixel
+ * (`probe` 0, `pri` NULL there) and into trace_point_pri, probe mode's one copy. */
+static inline __attribute__((always_inline)) void trace_point(const rt_scene *s, const rt_view *v,
+                                                              const rt_params *p, int x, int y,
+                                                              rt_stats *stats, rt_sample *out,
+                                                              int probe, rt_primary *pri)
 {
-    int eye_prepared =
-        v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
+    int eye_prepared = RT_COMPILED_PROBE && pri
+        ? 2
+        : v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
     trace_ctx c = {
-        s,    stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0, eye_prepared,
-        probe};
+        s,     stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0, eye_prepared,
+        probe, pri};
     out->nhits = 0;
     out->cell = 0;
-    for (int i = 0; i < RT_MAX_LIGHTS; i++)
-        out->light_state[i] = 0;
-    stats->rays_primary++;
+    out->lights = 0;
+    dir3 d;
+    if (RT_COMPILED_PROBE && pri) {
+        if (pri->id == RT_PRIMARY_UNKNOWN)
+            pri->d = rt_view_ray(v, x, y);
+        d = pri->d;
+    } else {
+        d = rt_view_ray(v, x, y);
+    }
+    if (!probe)
+        stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, rt_view_ray(v, x, y), depth, R_ONE, 0, 0, -1);
+    out->color = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
 }
 
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 0);
+    trace_point(s, v, p, x, y, stats, out, 0, NULL);
 }
 
 #if RT_COMPILED_PROBE
-void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    int whole, rt_stats *stats, rt_sample *out)
+/* The one copy of trace_point for probe mode's calls (code size). */
+static __attribute__((noinline)) void trace_point_pri(const rt_scene *s, const rt_view *v,
+                                                      const rt_params *p, int x, int y,
+                                                      rt_stats *stats, rt_sample *out, int probe,
+                                                      rt_primary *pri)
 {
-    trace_point(s, v, p, x, y, stats, out, whole ? 2 : 1);
+    trace_point(s, v, p, x, y, stats, out, probe, pri);
+}
+
+void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                         rt_primary *pri, rt_stats *stats, rt_sample *out)
+{
+    trace_point_pri(s, v, p, x, y, stats, out, 0, pri);
+}
+
+void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                    int whole, rt_primary *pri, rt_stats *stats, rt_sample *out)
+{
+    trace_point_pri(s, v, p, x, y, stats, out, whole == RT_PROBE_TREE ? 3 : whole ? 2 : 1, pri);
 }
 #endif
