@@ -43,12 +43,12 @@ static dir3 sphere_normal(const rt_object *o, vec3 p)
     return d3_norm_near(v3_sub(p, o->center), o->inv_radius); /* |p - c| is about r */
 }
 
-SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+/* The plane test given num = offset - org . normal, the origin's signed distance to the plane. */
+SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, real *t)
 {
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
         return 0; /* parallel, or so nearly that the hit lies beyond any scene */
-    real num = r_sub(o->offset, v3_dot_d(org, o->normal)); /* signed distance to the plane */
     if (num == 0 || (num > 0) != (den > 0))
         return 0; /* behind the origin */
     if (den < 0) {
@@ -61,6 +61,11 @@ SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tma
         return 0;
     *t = r_div_u(num, den);
     return 1;
+}
+
+SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return plane_hit(o, r_sub(o->offset, v3_dot_d(org, o->normal)), d, tmax, t);
 }
 
 static dir3 plane_normal(const rt_object *o, vec3 p)
@@ -113,11 +118,15 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return rt_nearest_but(s, org, d, tmax, -1, t);
 }
 
-int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
+int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
 {
     real tmax = R_T_MAX;
     int best = -1;
-    for (int i = 0; i < s->nobjects; i++) {
+    if (s->nobjects < 32)
+        cand &= ((uint32_t)1 << s->nobjects) - 1;
+    /* Set bits in increasing order: the objects' order, as rt_nearest tests them. */
+    for (; cand; cand &= cand - 1) {
+        int i = __builtin_ctz(cand);
         const rt_object *o = &s->objects[i];
         real hit;
         int h;
@@ -131,7 +140,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
                 continue;
             h = sphere_hit(o, l, tca, d, tmax, &hit);
         } else {
-            h = plane_intersect(o, s->eye_at, d, tmax, &hit);
+            h = plane_hit(o, s->eye_num[i], d, tmax, &hit);
         }
         if (h) {
             tmax = hit;

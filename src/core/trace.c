@@ -10,6 +10,7 @@ typedef struct trace_ctx {
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     real pixel;       /* a pixel's footprint per unit of ray length, 0 = footprint off */
     int eye_prepared; /* the view's eye is the prepared one (eye_at): rt_nearest_primary applies */
+    uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
     int probe; /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record */
 } trace_ctx;
 
@@ -138,7 +139,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 {
     const rt_scene *s = c->scene;
     real t;
-    int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
+    int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, c->primary_cand, &t)
                                            : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
@@ -233,9 +234,15 @@ TRACE_POINT void trace_point(const rt_scene *s, const rt_view *v, const rt_param
 {
     int eye_prepared =
         v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {
-        s,    stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0, eye_prepared,
-        probe};
+    trace_ctx c = {s,
+                   stats,
+                   out,
+                   p->min_contrib,
+                   p->octaves,
+                   p->footprint ? v->pixel : 0,
+                   eye_prepared,
+                   rt_view_candidates(v, x, y),
+                   probe};
     out->nhits = 0;
     out->cell = 0;
     for (int i = 0; i < RT_MAX_LIGHTS; i++)
