@@ -58,6 +58,9 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
+/* fx_norm64(x, y, z, any frac, NULL): the unit vector alone, its code inlined for the primary
+ * rays (d3_ray). */
+dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z);
 /* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
  * arithmetic from the start. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
@@ -486,9 +489,9 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
     int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
     if (__builtin_expect(sh == 2, 1)) /* the usual frame: constant shifts */
-        return fx_norm64((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
-                         (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
-                         (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs, 58, 0);
+        return fx_norm64_dir((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
+                             (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
+                             (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs);
     int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * as + (int64_t)u.x * bs;
     int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * as + (int64_t)u.y * bs;
     int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * as + (int64_t)u.z * bs;

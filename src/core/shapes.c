@@ -43,8 +43,10 @@ static dir3 sphere_normal(const rt_object *o, vec3 p)
     return d3_norm_near(v3_sub(p, o->center), o->inv_radius); /* |p - c| is about r */
 }
 
-/* The plane test given num = offset - org . normal, the origin's signed distance to the plane. */
-SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, real *t)
+/* The plane test given num = offset - org . normal, the origin's signed distance to the plane.
+ * `near`: tmax <= R_T_MAX, so that tmax * |den| (|den| <= 1 + 2^-28) stays in range and is formed
+ * without the range check (r_mul_u_in), the same value. */
+SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int near, real *t)
 {
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
@@ -57,7 +59,7 @@ SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, rea
     }
     /* t = num / den < tmax exactly when num < tmax * den: test before dividing, so the
      * quotient never overflows. */
-    if (num >= r_mul_u(tmax, den))
+    if (num >= (near ? r_mul_u_in(tmax, den) : r_mul_u(tmax, den)))
         return 0;
     *t = r_div_u(num, den);
     return 1;
@@ -65,7 +67,7 @@ SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, rea
 
 SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
 {
-    return plane_hit(o, r_sub(o->offset, v3_dot_d(org, o->normal)), d, tmax, t);
+    return plane_hit(o, r_sub(o->offset, v3_dot_d(org, o->normal)), d, tmax, 0, t);
 }
 
 static dir3 plane_normal(const rt_object *o, vec3 p)
@@ -140,7 +142,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
                 continue;
             h = sphere_hit(o, l, tca, d, tmax, &hit);
         } else {
-            h = plane_hit(o, s->eye_num[i], d, tmax, &hit);
+            h = plane_hit(o, s->eye_num[i], d, tmax, 1, &hit); /* tmax <= R_T_MAX */
         }
         if (h) {
             tmax = hit;
