@@ -446,7 +446,7 @@ static void test_primary_cull(void **state)
 /* rt_view_cull's candidate sets leave a sphere out of a pixel only where eye_cull rejects that
  * pixel's primary ray, so that rt_nearest_primary finds the same hit with them as with every
  * object: random scenes of spheres in front of, behind, around and at the eye (inside one now
- * and then), at every field of view, on frames whose tiles are 4 to 16 pixels; and they leave
+ * and then), at every field of view, on frames whose tiles are 4 and 8 pixels; and they leave
  * most spheres out of most pixels. */
 static void test_primary_tiles(void **state)
 {

@@ -146,7 +146,7 @@ typedef struct rt_scene {
 
 /* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
  * power-of-two squares (at least 4 pixels) that keep both counts within it. */
-#define RT_VIEW_TILES 32
+#define RT_VIEW_TILES 40
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
  * eye + t * unit(fwd + right * step*(2x+1-w) + up * step*(h-2y-1)). */
