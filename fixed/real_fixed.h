@@ -194,7 +194,10 @@ static inline real r_mul(real a, real b)
 #if FX_COUNT_EVENTS
 static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
 static inline real r_add_in(real a, real b) { return r_add(a, b); }
+static inline real r_neg_in(real a) { return r_neg(a); }
 #else
+/* -a for any a but INT32_MIN, which no operation here returns (saturation stops at -R_MAX). */
+static inline real r_neg_in(real a) { return -a; }
 static inline real r_mul_in(real a, real b)
 {
     int64_t p = (int64_t)a * b;
@@ -336,6 +339,10 @@ static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift((int64
 #endif
 
 static inline unit u_neg(unit a) { return r_neg(a); }
+
+/* u_neg of a unit that is not INT32_MIN (a dot product of unit vectors, |a| <= 1 + 2^-28, or
+ * any saturated one): the range check left out as r_neg_in does. */
+static inline unit u_neg_in(unit a) { return r_neg_in(a); }
 
 static inline unit u_add(unit a, unit b) { return r_add(a, b); }
 

@@ -45,7 +45,8 @@ static dir3 sphere_normal(const rt_object *o, vec3 p)
 
 /* The plane test given num = offset - org . normal, the origin's signed distance to the plane.
  * `near`: tmax <= R_T_MAX, so that tmax * |den| (|den| <= 1 + 2^-28) stays in range and is formed
- * without the range check (r_mul_u_in), the same value. */
+ * without the range check (r_mul_u_in), and num and den (a saturated difference and a dot product
+ * of unit vectors, never -2^31) are negated without it (r_neg_in, u_neg_in): the same values. */
 SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int near, real *t)
 {
     unit den = d3_dot(d, o->normal);
@@ -54,8 +55,8 @@ SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int
     if (num == 0 || (num > 0) != (den > 0))
         return 0; /* behind the origin */
     if (den < 0) {
-        den = u_neg(den);
-        num = r_neg(num);
+        den = near ? u_neg_in(den) : u_neg(den);
+        num = near ? r_neg_in(num) : r_neg(num);
     }
     /* t = num / den < tmax exactly when num < tmax * den: test before dividing, so the
      * quotient never overflows. */
