@@ -323,6 +323,14 @@ static inline real r_div_u(real a, unit b)
     return fx_sat(neg ? -q : q);
 }
 
+/* Is r_div_u(a, b) > s, for a > 0, b > 0 and 0 <= s < R_MAX? The same answer without the
+ * division: the quotient floor((a 2^F + b/2) / b) (saturated at R_MAX, above s) exceeds s exactly
+ * when a 2^F + b/2 >= (s + 1) b (below 2^62). */
+static inline int r_div_u_above(real a, unit b, real s)
+{
+    return ((uint64_t)a << FX_UF) + (uint64_t)b / 2 >= ((uint64_t)s + 1) * (uint64_t)b;
+}
+
 /* ---- unit: Q2.30 (or Q16.16) ------------------------------------------------------------- */
 
 /* Saturate to unit's 32 bits, +-INT32_MAX: fx_sat. */

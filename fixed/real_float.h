@@ -140,6 +140,9 @@ static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 
 static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
+/* Is r_div_u(a, b) > s (a > 0, b > 0, s >= 0)? */
+static inline int r_div_u_above(real a, unit b, real s) { return r_div_u(a, b) > s; }
+
 /* ---- unit -------------------------------------------------------------------------------- */
 
 static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }

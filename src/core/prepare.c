@@ -274,12 +274,15 @@ void rt_scene_prepare(rt_scene *s)
                 : 0;
         }
     s->eye_at = s->camera.eye;
+    s->plane_set = 0;
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
         s->eye_cone[i] = 0;
         s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0, &s->eye_cone[i]) : 0;
         /* a plane's signed distance from the eye, as plane_intersect forms it */
+        if (o->kind == RT_PLANE)
+            s->plane_set |= (uint32_t)1 << i;
         s->eye_num[i] = o->kind == RT_PLANE ? r_sub(o->offset, v3_dot_d(s->eye_at, o->normal)) : 0;
     }
     scene_bound(s);

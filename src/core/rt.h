@@ -134,6 +134,7 @@ typedef struct rt_scene {
      * per plane, eye_num = offset - eye_at . normal, the signed distance plane_intersect forms. */
     real eye_cone[RT_MAX_OBJECTS];
     real eye_num[RT_MAX_OBJECTS];
+    uint32_t plane_set; /* bit i: object i is a plane */
     /* A sphere around every sphere of the scene (bound_set: their bits, 0 when there are
      * fewer than two), with the shadow-ray rejection of one sphere (bound_shadow_cull[l], as
      * shadow_cull): a shadow ray it rejects misses every sphere inside, whose own tests are then
