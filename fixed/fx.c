@@ -379,4 +379,15 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 }
 #endif
 
+/* The primary ray's normalisation (d3_ray): fx_norm64 without the length. On 32-bit ARM with
+ * everything inlined into it (flatten: about 40 instructions a primary ray fewer under QEMU, for
+ * 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
+#if defined(__arm__)
+__attribute__((flatten))
+#endif
+dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z)
+{
+    return fx_norm64(x, y, z, 0, 0);
+}
+
 #endif

@@ -58,6 +58,9 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
+/* fx_norm64(x, y, z, any frac, NULL): the unit vector alone, its code inlined for the primary
+ * rays (d3_ray). */
+dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z);
 /* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
  * arithmetic from the start. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
@@ -191,7 +194,10 @@ static inline real r_mul(real a, real b)
 #if FX_COUNT_EVENTS
 static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
 static inline real r_add_in(real a, real b) { return r_add(a, b); }
+static inline real r_neg_in(real a) { return r_neg(a); }
 #else
+/* -a for any a but INT32_MIN, which no operation here returns (saturation stops at -R_MAX). */
+static inline real r_neg_in(real a) { return -a; }
 static inline real r_mul_in(real a, real b)
 {
     int64_t p = (int64_t)a * b;
@@ -334,6 +340,14 @@ static inline real r_div_u(real a, unit b)
     return fx_sat(neg ? -q : q);
 }
 
+/* Is r_div_u(a, b) > s, for a > 0, b > 0 and 0 <= s < R_MAX? The same answer without the
+ * division: the quotient floor((a 2^F + b/2) / b) (saturated at R_MAX, above s) exceeds s exactly
+ * when a 2^F + b/2 >= (s + 1) b (below 2^62). */
+static inline int r_div_u_above(real a, unit b, real s)
+{
+    return ((uint64_t)a << FX_UF) + (uint64_t)b / 2 >= ((uint64_t)s + 1) * (uint64_t)b;
+}
+
 /* ---- unit: Q2.30 (or Q16.16) ------------------------------------------------------------- */
 
 /* Saturate to unit's 32 bits, +-INT32_MAX: fx_sat. */
@@ -350,6 +364,10 @@ static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift((int64
 #endif
 
 static inline unit u_neg(unit a) { return r_neg(a); }
+
+/* u_neg of a unit that is not INT32_MIN (a dot product of unit vectors, |a| <= 1 + 2^-28, or
+ * any saturated one): the range check left out as r_neg_in does. */
+static inline unit u_neg_in(unit a) { return r_neg_in(a); }
 
 static inline unit u_add(unit a, unit b) { return r_add(a, b); }
 
@@ -503,9 +521,9 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
     int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
     if (__builtin_expect(sh == 2, 1)) /* the usual frame: constant shifts */
-        return fx_norm64((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
-                         (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
-                         (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs, 58, 0);
+        return fx_norm64_dir((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
+                             (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
+                             (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs);
     int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * as + (int64_t)u.x * bs;
     int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * as + (int64_t)u.y * bs;
     int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * as + (int64_t)u.z * bs;

@@ -69,6 +69,7 @@ static inline real r_shr(real a, int n)
 /* In-range arithmetic: the same operations (the fixed build's release form skips range checks). */
 static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
 static inline real r_add_in(real a, real b) { return r_add(a, b); }
+static inline real r_neg_in(real a) { return r_neg(a); }
 
 static inline real r_mul_sign(real v, int g) { return g > 0 ? v : (g < 0 ? -v : 0.0f); }
 
@@ -147,6 +148,9 @@ static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 
 static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
+/* Is r_div_u(a, b) > s (a > 0, b > 0, s >= 0)? */
+static inline int r_div_u_above(real a, unit b, real s) { return r_div_u(a, b) > s; }
+
 /* ---- unit -------------------------------------------------------------------------------- */
 
 static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }
@@ -154,6 +158,8 @@ static inline unit u_mul(unit a, unit b) { return fl_chk(a * b); }
 static inline unit u_mul_in(unit a, unit b) { return u_mul(a, b); }
 
 static inline unit u_neg(unit a) { return -a; }
+
+static inline unit u_neg_in(unit a) { return u_neg(a); }
 
 static inline unit u_add(unit a, unit b) { return fl_chk(a + b); }
 

@@ -390,23 +390,25 @@ static void test_primary_cull(void **state)
         double span = i % 10 == 0 ? 2000.0 : 20.0;
         s = (rt_scene){0};
         s.nobjects = 4;
-        for (int j = 0; j < 3; j++)
+        /* the plane last, or first (then rt_nearest_primary tests it after the spheres) */
+        int base = (i >> 1) & 1;
+        for (int j = base; j < base + 3; j++)
             s.objects[j] = sphere(rnd(-span, span), rnd(-span, span), rnd(-span, span),
                                   i % 10 == 0 ? rnd(0.05, 100) : rnd(0.05, 5));
-        s.objects[3] = plane(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1), rnd(-span, span));
+        s.objects[base ? 0 : 3] = plane(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1), rnd(-span, span));
         s.nmaterials = 1;
         s.materials[0].ior = R_ONE;
         double ex = rnd(-span, span), ey = rnd(-span, span), ez = rnd(-span, span);
         if (i % 7 == 0) { /* the eye inside the first sphere */
-            ex = to_d(s.objects[0].center.x) + rnd(-0.5, 0.5) * to_d(s.objects[0].radius);
-            ey = to_d(s.objects[0].center.y);
-            ez = to_d(s.objects[0].center.z);
+            ex = to_d(s.objects[base].center.x) + rnd(-0.5, 0.5) * to_d(s.objects[base].radius);
+            ey = to_d(s.objects[base].center.y);
+            ez = to_d(s.objects[base].center.z);
         }
         s.camera.eye = vd(ex, ey, ez);
         rt_scene_prepare(&s);
         /* aim at a point about the radius off a sphere's centre, at right angles to the view
          * now and then: rays that pass just inside or just outside it */
-        const rt_object *o = &s.objects[i % 3];
+        const rt_object *o = &s.objects[base + i % 3];
         double cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
         double r = to_d(o->radius);
         double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
@@ -421,13 +423,13 @@ static void test_primary_cull(void **state)
         dir3 d = d3_norm(to, 0);
         real t1, t2;
         int id1 = rt_nearest(&s, s.camera.eye, d, R_T_MAX, &t1);
-        int id2 = rt_nearest_primary(&s, d, &t2);
+        int id2 = rt_nearest_primary(&s, d, 0xFFFFFFFFu, &t2);
         if (id1 != id2 || t1 != t2)
             fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1, to_d(t1),
                      id2, to_d(t2), i);
-        hits += id1 >= 0 && id1 < 3;
-        real tca = v3_dot_d_in(s.eye_l[i % 3], d);
-        wide k = s.eye_cull[i % 3];
+        hits += id1 >= 0 && s.objects[id1].kind == RT_SPHERE;
+        real tca = v3_dot_d_in(s.eye_l[base + i % 3], d);
+        wide k = s.eye_cull[base + i % 3];
         if (k > 0 && (tca <= 0 || w_sq(tca) < k)) {
             culled++;
             if (rq - r < 0.012 + r * 0.002 && rq > r)
@@ -441,6 +443,81 @@ static void test_primary_cull(void **state)
     assert_true(culled > n / 10);
     assert_true(near_culled > n / 100);
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
+/* rt_view_cull's candidate sets leave a sphere out of a pixel only where eye_cull rejects that
+ * pixel's primary ray, so that rt_nearest_primary finds the same hit with them as with every
+ * object: random scenes of spheres in front of, behind, around and at the eye (inside one now
+ * and then), at every field of view, on frames whose tiles are 4 and 8 pixels; and they leave
+ * most spheres out of most pixels. */
+static void test_primary_tiles(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    static const int sizes[][2] = {{64, 48}, {128, 64}, {33, 97}, {320, 240}, {200, 20}};
+    long tests = 0, skipped = 0, pixels = 0;
+    fx_events_reset();
+    for (int n = 0; n < 300; n++) {
+        double span = n % 5 == 0 ? 200.0 : 12.0;
+        s = (rt_scene){0};
+        s.nobjects = 9;
+        for (int j = 0; j < 8; j++)
+            s.objects[j] = sphere(rnd(-span, span), rnd(-span, span), rnd(-span, span),
+                                  n % 5 == 0 ? rnd(0.05, 30) : rnd(0.05, 3));
+        s.objects[8] = plane(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1), rnd(-span, span));
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        double ex = rnd(-span, span), ey = rnd(-span, span), ez = rnd(-span, span);
+        if (n % 7 == 0) { /* the eye inside a sphere */
+            ex = to_d(s.objects[1].center.x) + rnd(-0.5, 0.5) * to_d(s.objects[1].radius);
+            ey = to_d(s.objects[1].center.y);
+            ez = to_d(s.objects[1].center.z);
+        }
+        /* look at a sphere (its silhouette then crosses the frame), or anywhere */
+        const rt_object *a = &s.objects[n % 8];
+        vec3 at = n % 3 ? a->center : vd(rnd(-span, span), rnd(-span, span), rnd(-span, span));
+        s.camera = (rt_camera){vd(ex, ey, ez), at, vd(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)),
+                               from_d(n % 4 == 0 ? rnd(10, 120) : rnd(30, 60))};
+        if (!rt_view_ok(&s.camera))
+            continue;
+        rt_scene_prepare(&s);
+        const int *wh = sizes[n % 5];
+        static rt_view v;
+        rt_view_init(&v, &s.camera, wh[0], wh[1]);
+        rt_view_cull(&v, &s);
+        for (int y = 0; y < wh[1]; y++)
+            for (int x = 0; x < wh[0]; x++) {
+                dir3 d = rt_view_ray(&v, x, y);
+                uint32_t cand = rt_view_candidates(&v, x, y);
+                for (int i = 0; i < 8; i++) {
+                    if (cand & (1u << i))
+                        continue;
+                    real tca = v3_dot_d_in(s.eye_l[i], d);
+                    wide k = s.eye_cull[i];
+                    if (!(k > 0 && (tca <= 0 || w_sq(tca) < k)))
+                        fail_msg("case %d: sphere %d left out of pixel (%d, %d) of %dx%d, whose "
+                                 "ray eye_cull does not reject",
+                                 n, i, x, y, wh[0], wh[1]);
+                    skipped++;
+                }
+                tests += 8;
+                pixels++;
+                if ((x + y) % 7 == 0) {
+                    real t1, t2;
+                    int id1 = rt_nearest_primary(&s, d, 0xFFFFFFFFu, &t1);
+                    int id2 = rt_nearest_primary(&s, d, cand, &t2);
+                    if (id1 != id2 || t1 != t2)
+                        fail_msg("case %d pixel (%d, %d): %d at %g with every object, %d at %g "
+                                 "with the candidates",
+                                 n, x, y, id1, to_d(t1), id2, to_d(t2));
+                }
+            }
+    }
+    print_message("primary tiles: %ld pixels, %ld of %ld sphere tests left out\n", pixels, skipped,
+                  tests);
+    assert_true(skipped > tests / 2);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+    assert_int_equal(fx_event_count[FX_EV_DOMAIN], 0);
 }
 
 /* Tracing a pixel fills the per-sample record adaptive subsampling will compare. */
@@ -550,10 +627,11 @@ static void test_far_mirror_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sphere_cases),  cmocka_unit_test(test_plane_cases),
-        cmocka_unit_test(test_sphere_random), cmocka_unit_test(test_shadow_cull),
-        cmocka_unit_test(test_shadow_bound),  cmocka_unit_test(test_primary_cull),
-        cmocka_unit_test(test_sample_record), cmocka_unit_test(test_far_mirror_chain),
+        cmocka_unit_test(test_sphere_cases),     cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random),    cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_shadow_bound),     cmocka_unit_test(test_primary_cull),
+        cmocka_unit_test(test_primary_tiles),    cmocka_unit_test(test_sample_record),
+        cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

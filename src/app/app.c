@@ -303,6 +303,7 @@ static int app_render(int argc, char **argv)
             rt_scene_force_effects(&scene);
         params.depth = o.k.depth >= 0 ? o.k.depth : scene.depth;
         rt_view_init(&view, &scene.camera, o.width, o.height);
+        rt_view_cull(&view, &scene);
         uint64_t t0 = app_us();
         frame_render(&fc, &scene, &view, &params, frame.pixels, frame.stride, &sums, traced);
         us += app_us() - t0;

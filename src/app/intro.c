@@ -118,6 +118,7 @@ static int intro_render(int32_t ms, const char *dest, uint64_t *ns)
     rt_params p = knobs_params(&intro_knobs, intro_scene.depth);
     rt_view v;
     rt_view_init(&v, &intro_scene.camera, INTRO_W, INTRO_H);
+    rt_view_cull(&v, &intro_scene);
     plat_frame f;
     if (plat_band_begin(&f, INTRO_W, INTRO_H, dest) != 0)
         return 1;

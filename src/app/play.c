@@ -126,6 +126,7 @@ int play_run(const play_opts *o)
             p.depth = scene.depth;
         rt_view view;
         rt_view_init(&view, &scene.camera, o->width, o->height);
+        rt_view_cull(&view, &scene);
         frame_sums st = {0};
         uint64_t t0 = plat_time_ns();
         frame_render(&fc, &scene, &view, &p, f.pixels, f.stride, &st, show ? traced : NULL);

@@ -38,6 +38,75 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     u_sincos_deg(r_shr(cam->fov, 1), &sn, &cs);
     v->step = u_tan_step(sn, cs, height); /* tan(fov / 2) / height */
     v->pixel = r_div(r_muli(u_to_real(sn), 2), r_muli(u_to_real(cs), height));
+    v->tan_half = r_div(u_to_real(sn), u_to_real(cs));
+    /* the smallest tiles (powers of two, 4 pixels or more) that fit RT_VIEW_TILES a side */
+    int k = 2;
+    while (((width - 1) >> k) >= RT_VIEW_TILES || ((height - 1) >> k) >= RT_VIEW_TILES)
+        k++;
+    v->cull_shift = k;
+    for (int i = 0; i < RT_VIEW_TILES; i++)
+        v->cull_cols[i] = v->cull_rows[i] = 0xFFFFFFFFu;
+}
+
+/* Once per frame: compiled for size (cold), off the image's hot path. */
+#define VIEW_ONCE __attribute__((cold, noinline))
+
+/* Clears `bit` in the tiles of one axis of the view (axis 0: cull_cols, along right; 1:
+ * cull_rows, along -up, so that pixel y has ib = 2y + 1 - h as x has ia = 2x + 1 - w) where no
+ * direction within the cone of sine sn around the unit vector l lies, given c = l . (right or
+ * -up), z = l . fwd and zz = z^2 - sn^2 >= 1/4.
+ *
+ * A direction within the cone passes within sn of l, and projected on the plane of the axis
+ * and fwd (which shortens distances), the line through the eye along (a, 1) passes within sn
+ * of (c, z): (a z - c)^2 <= sn^2 (1 + a^2), so a lies between the roots
+ * (c z -+ sn sqrt(c^2 + zz)) / zz. Formed in reals, each root is within 2^-12 + |a| 2^-15
+ * (units in Q2.30 or Q16.16, zz >= 1/4 to divide by); the range is widened by
+ * 2^-10 + |a| 2^-10, which also covers tan_half's rounding and the rays' own directions (within
+ * 2^-15 of their pixel's in either build). Pixel x lies at a = (2x + 1 - w) tan_half / h: the
+ * pixels of the range, and one more either side, are kept. */
+VIEW_ONCE static void view_keep(rt_view *v, int axis, unit c, unit z, unit sn, unit zz,
+                                uint32_t bit)
+{
+    int n = axis ? v->height : v->width, h = v->height, k = v->cull_shift;
+    uint32_t *set = axis ? v->cull_rows : v->cull_cols;
+    real root = r_sqrt(u_to_real(u_add(u_mul(c, c), zz)));
+    real mid = u_to_real(u_mul(c, z)), half = r_mul(u_to_real(sn), root), den = u_to_real(zz);
+    real lim = r_add(r_from_ratio(n, h), R(2.0)); /* beyond the image by a height at least */
+    int32_t px[2];
+    for (int e = 0; e < 2; e++) {
+        real a = r_div(e ? r_add(mid, half) : r_sub(mid, half), den);
+        real m = r_add(R(0.0009765625), r_shr(r_abs(a), 10));
+        a = r_clamp(r_div(e ? r_add(a, m) : r_sub(a, m), v->tan_half), r_neg(lim), lim);
+        /* ia = a h in half pixels, rounded outward: floor for the low end, ceil for the high */
+        int32_t ia;
+        r_floor_split(e ? r_neg(r_muli(a, h)) : r_muli(a, h), &ia);
+        px[e] = e ? ((n - ia) >> 1) + 1 : ((ia + n - 1) >> 1) - 1;
+    }
+    int lo = px[0] < 0 ? 0 : px[0], hi = px[1] >= n ? n - 1 : px[1];
+    for (int i = 0; i <= (n - 1) >> k; i++)
+        if (hi < lo || i < (lo >> k) || i > (hi >> k))
+            set[i] &= ~bit;
+}
+
+VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
+{
+    for (int i = 0; i < RT_VIEW_TILES; i++)
+        v->cull_cols[i] = v->cull_rows[i] = 0xFFFFFFFFu;
+    if (v->eye.x != s->eye_at.x || v->eye.y != s->eye_at.y || v->eye.z != s->eye_at.z)
+        return; /* rt_nearest_primary does not serve this view */
+    for (int i = 0; i < s->nobjects; i++) {
+        real cone = s->eye_cone[i];
+        if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->eye_cull[i] <= 0)
+            continue;
+        dir3 l = d3_norm(s->eye_l[i], 0);
+        unit z = d3_dot(l, v->fwd), sn = u_from_real(cone);
+        unit zz = u_add(u_mul(z, z), u_neg(u_mul(sn, sn)));
+        if (z <= 0 || zz < U(0.25))
+            continue; /* the cone reaches 60 degrees off the view: no bound */
+        for (int axis = 0; axis < 2; axis++)
+            view_keep(v, axis, d3_dot(l, axis ? d3_neg(v->up) : v->right), z, sn, zz,
+                      (uint32_t)1 << i);
+    }
 }
 
 dir3 rt_view_ray(const rt_view *v, int x, int y)

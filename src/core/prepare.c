@@ -121,6 +121,29 @@ static int scene_light_near(const rt_object *o, vec3 q)
     return gap < RT_NEAR_LIGHT;
 }
 
+/* The cone of directions from lp that scene_cull's rejection (K = k > 0) lets through, for the
+ * sphere whose centre is at squared distance d2 (d = r_sqrt_w(d2)) from lp, e its E: the sine
+ * of its half-angle around the direction to the centre, or 0 when there is no such cone under
+ * 1. A ray along d with s = c . d as computed passes the rejection only if s >= sqrt(K), so
+ * the exact c . d is at least sqrt(K) - E and the line of d passes within
+ * sqrt(D^2 - (sqrt(K) - E)^2) of the centre: that over D, rounded up in both builds (sqrt(K)
+ * taken a step and 2^-20 low, the result raised by 2^-10 D and two steps, D taken a step and
+ * 2^-20 low).
+ * A direction further off the centre's than the asin of this is rejected by the test. */
+static real scene_cone(wide d2, real d, wide k, real e)
+{
+    real kr = r_sqrt_w(k);
+    kr = r_sub(r_sub(r_sub(kr, e), r_shr(kr, 20)), R_LSB);
+    real dl = r_sub(r_sub(d, r_shr(d, 20)), R_LSB);
+    if (kr <= 0 || dl <= 0 || kr >= d)
+        return 0;
+    real far = r_add(r_add(r_sqrt_w(w_sub(d2, w_sq(kr))), r_shr(d, 10)), r_muli(R_LSB, 2));
+    if (far >= dl)
+        return 0;
+    real sn = r_add(r_div(far, dl), r_muli(R_LSB, 2));
+    return sn < R_ONE ? sn : 0;
+}
+
 /* The rejection of sphere o for rays from or toward the point lp (rt_scene.shadow_cull: a light,
  * reach 2 R_EPS_OFFSET; rt_scene.eye_cull: the eye, reach 0, where the ray starts at lp
  * itself and s = tca, pointing away when s <= 0).
@@ -140,7 +163,7 @@ static int scene_light_near(const rt_object *o, vec3 q)
  * coordinates) and the rounding of K itself; E = D 2^-18 + 2 LSB bounds the dot product's
  * error (the unit vector's length is exact to 2^-28 fixed, 2^-21 float; with unit in Q16.16,
  * 1.3 * 2^-16, E = D 2^-14 + 2 LSB: U_LEN_ERR_SHIFT). */
-static wide scene_cull(const rt_object *o, vec3 lp, real reach)
+static wide scene_cull(const rt_object *o, vec3 lp, real reach, real *cone)
 {
     vec3 c = v3_sub(o->center, lp);
     wide d2 = w_len2(c);
@@ -150,6 +173,8 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach)
     real e = r_add(r_shr(d, U_LEN_ERR_SHIFT), r_muli(R_LSB, 2));
     /* D < 14190 and R, E small against it inside the scene cube: no term saturates */
     wide k = w_sub(w_sub(d2, w_sq(big_r)), w_add(w_mul(r_muli(d, 2), e), w_sq(e)));
+    if (cone)
+        *cone = k > 0 ? scene_cone(d2, d, k, e) : 0;
     return k > 0 ? k : 0;
 }
 
@@ -197,7 +222,7 @@ static void scene_bound(rt_scene *s)
     s->bound_radius = radius;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->bound_shadow_cull[l] =
-            l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+            l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0) : 0;
 }
 
 /* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
@@ -244,14 +269,21 @@ void rt_scene_prepare(rt_scene *s)
             const rt_object *o = &s->objects[i];
             if (scene_light_near(o, s->lights[l].pos))
                 s->near_lights |= 1u << l;
-            s->shadow_cull[l][i] =
-                o->kind == RT_SPHERE ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+            s->shadow_cull[l][i] = o->kind == RT_SPHERE
+                ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0)
+                : 0;
         }
     s->eye_at = s->camera.eye;
+    s->plane_set = 0;
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
-        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0) : 0;
+        s->eye_cone[i] = 0;
+        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0, &s->eye_cone[i]) : 0;
+        /* a plane's signed distance from the eye, as plane_intersect forms it */
+        if (o->kind == RT_PLANE)
+            s->plane_set |= (uint32_t)1 << i;
+        s->eye_num[i] = o->kind == RT_PLANE ? r_sub(o->offset, v3_dot_d(s->eye_at, o->normal)) : 0;
     }
     scene_bound(s);
     scene_derive_effects(s);

@@ -129,6 +129,12 @@ typedef struct rt_scene {
     vec3 eye_at;
     vec3 eye_l[RT_MAX_OBJECTS];
     wide eye_cull[RT_MAX_OBJECTS];
+    /* Per sphere, the sine of the half-angle of the cone of directions from eye_at (around the
+     * centre's) outside which eye_cull rejects every ray, 0 when it has none (rt_view_cull);
+     * per plane, eye_num = offset - eye_at . normal, the signed distance plane_intersect forms. */
+    real eye_cone[RT_MAX_OBJECTS];
+    real eye_num[RT_MAX_OBJECTS];
+    uint32_t plane_set; /* bit i: object i is a plane */
     /* A sphere around every sphere of the scene (bound_set: their bits, 0 when there are
      * fewer than two), with the shadow-ray rejection of one sphere (bound_shadow_cull[l], as
      * shadow_cull): a shadow ray it rejects misses every sphere inside, whose own tests are then
@@ -139,15 +145,31 @@ typedef struct rt_scene {
     wide bound_shadow_cull[RT_MAX_LIGHTS];
 } rt_scene;
 
+/* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
+ * power-of-two squares (at least 4 pixels) that keep both counts within it. */
+#define RT_VIEW_TILES 40
+
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
  * eye + t * unit(fwd + right * step*(2x+1-w) + up * step*(h-2y-1)). */
 typedef struct rt_view {
     vec3 eye;
     dir3 fwd, right, up;
-    ustep step; /* tan(fov/2) / height */
-    real pixel; /* a pixel's width at distance 1, 2 tan(fov/2) / height (noise footprint) */
+    ustep step;    /* tan(fov/2) / height */
+    real pixel;    /* a pixel's width at distance 1, 2 tan(fov/2) / height (noise footprint) */
+    real tan_half; /* tan(fov/2) */
     int width, height;
+    /* Primary-ray candidates (rt_view_cull): the objects whose test can find pixel (x, y)'s
+     * primary ray a hit are among the bits of cull_cols[x >> cull_shift] &
+     * cull_rows[y >> cull_shift] (every bit set until rt_view_cull). */
+    int cull_shift;
+    uint32_t cull_cols[RT_VIEW_TILES], cull_rows[RT_VIEW_TILES];
 } rt_view;
+
+/* The objects rt_nearest_primary must test for pixel (x, y) of the view. */
+static inline uint32_t rt_view_candidates(const rt_view *v, int x, int y)
+{
+    return v->cull_cols[x >> v->cull_shift] & v->cull_rows[y >> v->cull_shift];
+}
 
 /* One node of the ray tree as adaptive subsampling compares it. */
 typedef struct rt_hit_rec {
@@ -287,6 +309,14 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
 /* Direction of the primary ray through the centre of pixel (x, y). */
 dir3 rt_view_ray(const rt_view *v, int x, int y);
 
+/* Fills the view's primary-ray candidate sets (rt_view_candidates) for scene s as prepared
+ * (rt_scene_prepare) with its eye_at at the view's eye: a sphere is left out of the tiles
+ * where eye_cull would reject every primary ray (an over-estimate of its outline on the
+ * image, by a margin above the rounding of either build), so rt_nearest_primary gives the
+ * same results with the sets as without. Call it again whenever the scene or the view
+ * changes; rt_view_init resets the sets to every object. */
+void rt_view_cull(rt_view *v, const rt_scene *s);
+
 /* Traces the primary ray through pixel (x, y) with at most p->depth bounces and p->min_contrib
  * recursion control; fills *out and adds the rays cast to *stats. */
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
@@ -331,8 +361,10 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t);
 
 /* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
- * starts from the frame's eye_l and eye_cull. */
-int rt_nearest_primary(const rt_scene *s, dir3 d, real *t);
+ * starts from the frame's eye_l and eye_cull, the plane test from eye_num. Only the objects
+ * in `cand` are tested (bit i: object i): every object whose test could report a hit for d
+ * must be in it (rt_view_candidates of the ray's pixel, or all bits). */
+int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t);
 
 /* Does any object of the set `occ` (bit i: object i) block the shadow ray toward light
  * `light`, the segment from org along d of length dist? Counts the objects tested in

@@ -43,24 +43,46 @@ static dir3 sphere_normal(const rt_object *o, vec3 p)
     return d3_norm_near(v3_sub(p, o->center), o->inv_radius); /* |p - c| is about r */
 }
 
-SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+/* The plane test up to its division, given num = offset - org . normal, the origin's signed
+ * distance to the plane: 1 when the ray meets the plane at t = num / den in (0, tmax), with num
+ * and den turned positive in *pn and *pd. `near`: tmax <= R_T_MAX, so that tmax * |den|
+ * (|den| <= 1 + 2^-28) stays in range and is formed without the range check (r_mul_u_in), and
+ * num and den (a saturated difference and a dot product of unit vectors, never -2^31) are negated
+ * without it (r_neg_in, u_neg_in): the same values. */
+SHAPES_INLINE int plane_meets(const rt_object *o, real num, dir3 d, real tmax, int near, real *pn,
+                              unit *pd)
 {
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
         return 0; /* parallel, or so nearly that the hit lies beyond any scene */
-    real num = r_sub(o->offset, v3_dot_d(org, o->normal)); /* signed distance to the plane */
     if (num == 0 || (num > 0) != (den > 0))
         return 0; /* behind the origin */
     if (den < 0) {
-        den = u_neg(den);
-        num = r_neg(num);
+        den = near ? u_neg_in(den) : u_neg(den);
+        num = near ? r_neg_in(num) : r_neg(num);
     }
     /* t = num / den < tmax exactly when num < tmax * den: test before dividing, so the
      * quotient never overflows. */
-    if (num >= r_mul_u(tmax, den))
+    if (num >= (near ? r_mul_u_in(tmax, den) : r_mul_u(tmax, den)))
+        return 0;
+    *pn = num;
+    *pd = den;
+    return 1;
+}
+
+/* The plane test given num (plane_meets), with the hit's distance in *t. */
+SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int near, real *t)
+{
+    unit den;
+    if (!plane_meets(o, num, d, tmax, near, &num, &den))
         return 0;
     *t = r_div_u(num, den);
     return 1;
+}
+
+SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return plane_hit(o, r_sub(o->offset, v3_dot_d(org, o->normal)), d, tmax, 0, t);
 }
 
 static dir3 plane_normal(const rt_object *o, vec3 p)
@@ -113,11 +135,27 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return rt_nearest_but(s, org, d, tmax, -1, t);
 }
 
-int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
+int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
 {
     real tmax = R_T_MAX;
     int best = -1;
-    for (int i = 0; i < s->nobjects; i++) {
+    if (s->nobjects < 32)
+        cand &= ((uint32_t)1 << s->nobjects) - 1;
+    /* A plane ahead of every other candidate and the only one among them (the usual floor) is
+     * tested last: whether it meets the ray within R_T_MAX does not depend on the others, and a
+     * sphere after it wins exactly when its hit is nearer than the plane's t, which
+     * r_div_u_above tells without the division; the division is made only when the plane wins.
+     * Any other mix of planes keeps the objects' order (a plane's test against a tmax from an
+     * earlier object is no comparison of distances). */
+    uint32_t first = cand & (0 - cand);
+    int last = -1;
+    if ((first & s->plane_set) && !(cand & s->plane_set & ~first)) {
+        last = __builtin_ctz(first);
+        cand &= ~first;
+    }
+    /* Set bits in increasing order: the objects' order, as rt_nearest tests them. */
+    for (; cand; cand &= cand - 1) {
+        int i = __builtin_ctz(cand);
         const rt_object *o = &s->objects[i];
         real hit;
         int h;
@@ -131,12 +169,19 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
                 continue;
             h = sphere_hit(o, l, tca, d, tmax, &hit);
         } else {
-            h = plane_intersect(o, s->eye_at, d, tmax, &hit);
+            h = plane_hit(o, s->eye_num[i], d, tmax, 1, &hit); /* tmax <= R_T_MAX */
         }
         if (h) {
             tmax = hit;
             best = i;
         }
+    }
+    real num;
+    unit den;
+    if (last >= 0 && plane_meets(&s->objects[last], s->eye_num[last], d, R_T_MAX, 1, &num, &den) &&
+        (best < 0 || !r_div_u_above(num, den, tmax))) {
+        tmax = r_div_u(num, den);
+        best = last;
     }
     *t = tmax;
     return best;

@@ -18,6 +18,7 @@ typedef struct trace_ctx {
      * without light states */
     int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
+    uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -65,7 +66,7 @@ static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d,
         const rt_scene *s = c->scene;
         int prepared = org.x == s->eye_at.x && org.y == s->eye_at.y && org.z == s->eye_at.z;
         pri->t = 0;
-        pri->id = prepared ? rt_nearest_primary(s, d, &pri->t)
+        pri->id = prepared ? rt_nearest_primary(s, d, c->primary_cand, &pri->t)
                            : rt_nearest_but(s, org, d, R_T_MAX, -1, &pri->t);
     }
     *t = pri->t;
@@ -169,7 +170,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     real t;
     int id = level > 0 || !c->eye_prepared ? rt_nearest_but(s, org, d, R_T_MAX, from, &t)
         : TRACE_FIRST(c)                   ? trace_first(c, org, d, &t)
-                                           : rt_nearest_primary(s, d, &t);
+                                           : rt_nearest_primary(s, d, c->primary_cand, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
         return s->background;
@@ -261,9 +262,16 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     int eye_prepared = RT_COMPILED_PROBE && pri
         ? 2
         : v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
-    trace_ctx c = {
-        s,     stats, out, p->min_contrib, p->octaves, p->footprint ? v->pixel : 0, eye_prepared,
-        probe, pri};
+    trace_ctx c = {.scene = s,
+                   .stats = stats,
+                   .sample = out,
+                   .min_contrib = p->min_contrib,
+                   .octaves = p->octaves,
+                   .pixel = p->footprint ? v->pixel : 0,
+                   .eye_prepared = eye_prepared,
+                   .probe = probe,
+                   .pri = pri,
+                   .primary_cand = rt_view_candidates(v, x, y)};
     out->nhits = 0;
     out->cell = 0;
     out->lights = 0;

@@ -37,6 +37,7 @@ int app_main(int argc, char **argv)
     }
     int w = c.width, h = c.height;
     rt_view_init(&view, &scene.camera, w, h);
+    rt_view_cull(&view, &scene);
     rt_params p = knobs_params(&k, scene.depth);
     int grid = p.grid;
     rt_sample *s = malloc((size_t)w * h * sizeof *s);

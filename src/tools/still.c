@@ -35,6 +35,7 @@ int main(int argc, char **argv)
     rt_params p = knobs_params(&defaults, scene.depth);
     rt_view v;
     rt_view_init(&v, &scene.camera, (int)w, (int)h);
+    rt_view_cull(&v, &scene);
     uint32_t *pixels = malloc((size_t)w * (size_t)h * sizeof *pixels);
     void *work = malloc(rt_render_work_size(&p, (int)w));
     if (!pixels || !work) {
