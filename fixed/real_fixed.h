@@ -165,7 +165,15 @@ static inline real r_sub(real a, real b)
 #endif
 }
 
-static inline real r_neg(real a) { return fx_sat(-(int64_t)a); }
+/* -a: fx_sat(-a), whose only out-of-range case is a = INT32_MIN (to R_MAX), tested alone. */
+static inline real r_neg(real a)
+{
+    if (__builtin_expect(a == INT32_MIN, 0)) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return R_MAX;
+    }
+    return -a;
+}
 
 static inline real r_abs(real a) { return a < 0 ? r_neg(a) : a; }
 
@@ -335,6 +343,14 @@ static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift((int64
 static inline unit u_neg(unit a) { return r_neg(a); }
 
 static inline unit u_add(unit a, unit b) { return r_add(a, b); }
+
+/* u_add of values whose sum docs/numerics.md bounds inside unit's range (the Phong term's
+ * partial sums, within [-1, 1]): unchecked in the release build (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline unit u_add_in(unit a, unit b) { return u_add(a, b); }
+#else
+static inline unit u_add_in(unit a, unit b) { return (unit)((uint32_t)a + (uint32_t)b); }
+#endif
 
 /* unit * integer (pixel offsets along the image plane). */
 static inline unit u_muli(unit a, int32_t i) { return u_sat((int64_t)a * i); }

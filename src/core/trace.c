@@ -63,71 +63,67 @@ typedef struct trace_hit {
  * less in registers. */
 static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i, rt_color *col)
 {
+    /* The hit's fields are read where they are used (not copied up front): most lights are
+     * behind the surface or shadowed and need only p and n. */
     const rt_scene *s = c->scene;
-    const rt_material *m = h->m;
-    const vec3 p = h->p, p_out = h->p_out;
-    const dir3 n = h->n, d = h->d;
-    const unit dn = h->dn;
-    const rt_color base = h->base;
-    const int id = h->id, inside = h->inside;
     const rt_light *li = &s->lights[i];
+    const dir3 n = h->n;
     /* A light behind the surface, or exactly on the point (no direction: it lights the
      * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
      * cost of a normalisation. */
-    vec3 to_light = v3_sub(li->pos, p);
-    real dist = 0;
-    dir3 l = {0, 0, 0};
-    if (v3_faces(to_light, n))
-        l = d3_norm(to_light, &dist);
+    vec3 to_light = v3_sub(li->pos, h->p);
+    if (!v3_faces(to_light, n))
+        return 0;
+    real dist;
+    dir3 l = d3_norm(to_light, &dist);
     unit ndl = d3_dot(n, l);
-    uint8_t state = 0;
-    if (ndl > 0) { /* the light is in front of the surface */
-        /* A convex surface never shadows its own lit side; seen from inside (glass) it
-         * can. Lights nothing can occlude cast no shadow ray at all. */
-        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-        if (!inside && !s->forced)
-            occ &= ~((uint32_t)1 << id);
-        int blocked = 0;
-        if (occ) {
-            /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
-             * light, behind a surface that passes closer to the light than that (a light
-             * just above a floor seen from the underside of a ball: a false shadow). For
-             * such lights it is aimed from p_out itself and ends at the light. */
-            real sdist = dist;
-            dir3 sl = l;
-            if (s->near_lights & (1u << i)) {
-                vec3 to_light_out = v3_sub(li->pos, p_out);
-                sdist = 0;
-                if (!v3_is_zero(to_light_out))
-                    sl = d3_norm(to_light_out, &sdist);
-            }
-            /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
-             * off the surface: a surface through the light itself (a light in a corner of
-             * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
-            c->stats->rays_shadow++;
-            if (sdist > R_EPS_OFFSET)
-                blocked = rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
+    if (ndl <= 0)
+        return 0; /* the light is not in front of the surface */
+    /* A convex surface never shadows its own lit side; seen from inside (glass) it
+     * can. Lights nothing can occlude cast no shadow ray at all. */
+    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+    if (!h->inside && !s->forced)
+        occ &= ~((uint32_t)1 << h->id);
+    if (occ) {
+        /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+         * light, behind a surface that passes closer to the light than that (a light
+         * just above a floor seen from the underside of a ball: a false shadow). For
+         * such lights it is aimed from p_out itself and ends at the light. */
+        real sdist = dist;
+        dir3 sl = l;
+        if (s->near_lights & (1u << i)) {
+            vec3 to_light_out = v3_sub(li->pos, h->p_out);
+            sdist = 0;
+            if (!v3_is_zero(to_light_out))
+                sl = d3_norm(to_light_out, &sdist);
         }
-        if (!blocked) {
-            state = 1;
-            *col = c3_madd(*col, c3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
-            if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
-                /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
-                 * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
-                 * and eye straight above the point), just outside Q2.30, while every
-                 * partial sum is within [-1, 1] (docs/numerics.md). */
-                unit ndn = u_neg(u_mul(ndl, dn));
-                unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
-                if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
-                    real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
-                    *col = c3_madd(*col, li->color, spec);
-                    if (spec > RT_HIGHLIGHT_MIN)
-                        state = 2;
-                }
-            }
+        /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+         * off the surface: a surface through the light itself (a light in a corner of
+         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+        c->stats->rays_shadow++;
+        if (sdist > R_EPS_OFFSET &&
+            rt_occluded(s, c->stats, i, occ, h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            return 0;
+    }
+    const rt_material *m = h->m;
+    rt_color acc = c3_madd(*col, c3_mul(li->color, h->base), u_to_real(ndl)); /* Lambert */
+    uint8_t state = 1;
+    if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
+        /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
+        /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation.
+         * Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light and eye straight above
+         * the point), just outside Q2.30, while every partial sum is within [-1, 1]
+         * (docs/numerics.md): the in-range forms (u_mul_in, u_add_in). */
+        unit ndn = u_neg(u_mul_in(ndl, h->dn));
+        unit vr = u_add_in(u_add_in(d3_dot(h->d, l), ndn), ndn);
+        if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
+            real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
+            acc = c3_madd(acc, li->color, spec);
+            if (spec > RT_HIGHLIGHT_MIN)
+                state = 2;
         }
     }
+    *col = acc;
     return state;
 }
 
