@@ -195,7 +195,15 @@ static inline vec3 v3_along_in(vec3 o, dir3 d, real t)
 /* Is every coordinate of p within [-lim, lim]? */
 static inline int v3_within(vec3 p, real lim)
 {
+#if REAL_FIXED
+    /* for 0 <= lim <= R_MAX: a in [-lim, lim] exactly when a + lim, taken modulo 2^32, is at most
+     * 2 lim (one add and one unsigned compare a coordinate) */
+    uint32_t span = 2u * (uint32_t)lim;
+    return ((uint32_t)p.x + (uint32_t)lim <= span) & ((uint32_t)p.y + (uint32_t)lim <= span) &
+        ((uint32_t)p.z + (uint32_t)lim <= span);
+#else
     return p.x <= lim && p.x >= -lim && p.y <= lim && p.y >= -lim && p.z <= lim && p.z >= -lim;
+#endif
 }
 
 /* Is v the zero vector (which has no direction: test before d3_norm)? */

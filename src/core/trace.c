@@ -142,7 +142,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     }
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
-    vec3 p = v3_along_in(org, d, t);
+    /* The hit as trace_light sees it, formed in place. */
+    trace_hit h;
+    const vec3 p = h.p = v3_along_in(org, d, t);
     if (TRACE_PROBE(c) && c->probe == 1)
         return trace_probe_hit(c, m, p, id);
     dir3 n = rt_shapes[o->kind].normal(o, p);
@@ -153,8 +155,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         dn = u_neg(dn);
         inside = 1;
     }
+    h.n = n;
+    h.d = d;
+    h.dn = dn;
+    h.m = m;
+    h.id = id;
+    h.inside = inside;
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
+    const vec3 p_out = h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
      * primary hit. */
@@ -169,7 +177,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     if (level == 0)
         c->sample->cell = cell;
     rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
-    trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
+    h.base = base;
     int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
     for (int i = 0; i < nlights; i++) {
         uint8_t state = trace_light(c, &h, i, &col);
