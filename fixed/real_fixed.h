@@ -613,37 +613,46 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
 #endif
 }
 
-/* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */
-static inline dir3 d3_reflect(dir3 d, dir3 n)
+/* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised; dn = d3_dot(d, n)
+ * (the tracer has it already). |dn| <= 1 + 2^-28, so dn n.x is one signed 32 x 32-bit product
+ * (smull) and 2 dn n.x stays below 2^62. */
+static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    int64_t k = fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z, FX_UF);
-    int64_t x = (int64_t)d.x * U_ONE - 2 * k * n.x;
-    int64_t y = (int64_t)d.y * U_ONE - 2 * k * n.y;
-    int64_t z = (int64_t)d.z * U_ONE - 2 * k * n.z;
+    int64_t x = (int64_t)d.x * U_ONE - 2 * ((int64_t)dn * n.x);
+    int64_t y = (int64_t)d.y * U_ONE - 2 * ((int64_t)dn * n.y);
+    int64_t z = (int64_t)d.z * U_ONE - 2 * ((int64_t)dn * n.z);
     return fx_renorm(x, y, z);
 }
 
+static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot(d, n)); }
+
 /* Refraction of d through a surface with normal n facing the incoming ray (d.n <= 0), with
- * eta = n1 / n2 in (0, 3]. Returns 0 on total internal reflection, else 1 and *out. Formats
- * for unit in Q2.30 (Q.F below: Q.30; with unit in Q16.16, Q.16 and products in Q.32). */
-static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+ * eta = n1 / n2 in (0, 3] and dn = d3_dot(d, n). Returns 0 on total internal reflection, else
+ * 1 and *out. Formats for unit in Q2.30 (Q.F below: Q.30; with unit in Q16.16, Q.16 and
+ * products in Q.32). cosi, eta and the components are 32-bit values, so their products are
+ * signed 32 x 32-bit ones (smull); eta d.x is formed in Q.46 (below 3 * 2^46) and scaled. */
+static inline int d3_refract_k(dir3 d, dir3 n, unit dn, real eta, dir3 *out)
 {
-    int64_t cosi = -fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z,
-                                   FX_UF);               /* Q.F */
+    int32_t cosi = -dn;                                  /* Q.F, |cosi| <= 1 + 2^-28 */
     int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF); /* Q.F, at most 9 * 2^F */
-    int64_t sin2 = U_ONE - ((cosi * cosi) >> FX_UF);     /* Q.F in [0, 1] */
-    const int pre = FX_UF == 30 ? 2 : 0;                 /* keeps the product below 2^62 */
+    int32_t sin2 = U_ONE - (int32_t)(((int64_t)cosi * cosi) >> FX_UF); /* Q.F in [0, 1] */
+    const int pre = FX_UF == 30 ? 2 : 0; /* keeps the product below 2^62 */
     int64_t k = U_ONE - ((eta2 * (sin2 >> pre)) >> (FX_UF - pre));
     if (k < 0)
         return 0;
     int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);  /* Q.F */
     int64_t m = (((int64_t)eta * cosi) >> 16) - cost; /* Q.F, |m| < 2^(F + 3) */
-    int64_t e = (int64_t)eta * (1 << (FX_UF - 16));   /* eta in Q.F */
-    int64_t x = e * d.x + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
-    int64_t y = e * d.y + m * n.y;
-    int64_t z = e * d.z + m * n.z;
+    const int64_t e = 1 << (FX_UF - 16);              /* eta d.x in Q.2F */
+    int64_t x = (int64_t)eta * d.x * e + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
+    int64_t y = (int64_t)eta * d.y * e + m * n.y;
+    int64_t z = (int64_t)eta * d.z * e + m * n.z;
     *out = fx_renorm(x, y, z);
     return 1;
+}
+
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    return d3_refract_k(d, n, d3_dot(d, n), eta, out);
 }
 
 /* ---- in-scene variants, for the sphere test: no saturation test. Objects lie within

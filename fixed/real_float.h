@@ -255,21 +255,30 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
     return fl_norm(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x, len);
 }
 
-static inline dir3 d3_reflect(dir3 d, dir3 n)
+/* d3_reflect and d3_refract given dn = d3_dot(d, n) (the fixed build's d3_reflect_k,
+ * d3_refract_k). */
+static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    float k = 2.0f * d3_dot(d, n);
+    float k = 2.0f * dn;
     return fl_norm(d.x - k * n.x, d.y - k * n.y, d.z - k * n.z, 0);
 }
 
-static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot(d, n)); }
+
+static inline int d3_refract_k(dir3 d, dir3 n, unit dn, real eta, dir3 *out)
 {
-    float cosi = -d3_dot(d, n);
+    float cosi = -dn;
     float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
     if (k < 0.0f)
         return 0;
     float m = eta * cosi - sqrtf(k);
     *out = fl_norm(eta * d.x + m * n.x, eta * d.y + m * n.y, eta * d.z + m * n.z, 0);
     return 1;
+}
+
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    return d3_refract_k(d, n, d3_dot(d, n), eta, out);
 }
 
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }

@@ -194,10 +194,13 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * what it mirrors is below a pixel. */
     if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
         real kr = m->reflect;
+        /* d . n for the facing normal: dn itself, unless n was turned (rounding -(d . n) and
+         * negating the rounded value can differ by a step) */
+        unit dk = inside ? d3_dot(d, n) : dn;
         if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
             dir3 rd;
             real eta = inside ? m->ior : m->ior_inv;
-            if (d3_refract(d, n, eta, &rd)) {
+            if (d3_refract_k(d, n, dk, eta, &rd)) {
                 real wt = r_mul_in(weight, m->transmit);
                 if (wt >= c->min_contrib) { /* adaptive recursion control */
                     c->stats->rays_refract++;
@@ -217,8 +220,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
              * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
              * be off by more than that. Every object is tested when effects are forced.) */
             int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
-            rt_color rc =
-                trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, travelled, self);
+            rt_color rc = trace_ray(c, p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
+                                    travelled, self);
             col = c3_madd(col, rc, kr);
         }
     }
