@@ -49,14 +49,15 @@ typedef struct rt_texture {
 typedef struct rt_material {
     rt_color diffuse; /* r_d: diffuse colour (unless textured) */
     rt_texture tex;
-    real ambient;       /* r_a: share of the ambient light reflected */
-    real specular;      /* r_s in [0, 1] */
-    uint16_t shininess; /* h >= 1: highlight exponent */
-    real reflect;       /* weight of the mirror ray, [0, 1] */
-    real transmit;      /* weight of the refracted ray, [0, 1] */
-    real ior;           /* index of refraction (inside / outside), in [1, 3] */
-    real ior_inv;       /* 1 / ior, kept so that no ray divides */
-    unit spec_zero;     /* u_pow(v, shininess) is exactly 0 for every v <= this */
+    real ambient;          /* r_a: share of the ambient light reflected */
+    real specular;         /* r_s in [0, 1] */
+    uint16_t shininess;    /* h >= 1: highlight exponent */
+    real reflect;          /* weight of the mirror ray, [0, 1] */
+    real transmit;         /* weight of the refracted ray, [0, 1] */
+    real ior;              /* index of refraction (inside / outside), in [1, 3] */
+    real ior_inv;          /* 1 / ior, kept so that no ray divides */
+    unit spec_zero;        /* u_pow(v, shininess) is exactly 0 for every v <= this */
+    rt_color ambient_term; /* diffuse x scene ambient x ambient, as trace_ray forms it */
 } rt_material;
 
 enum rt_shape_kind { RT_SPHERE, RT_PLANE, RT_SHAPE_COUNT };

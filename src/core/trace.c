@@ -176,7 +176,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
-    rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
+    /* the ambient term; for the material's own diffuse colour (untextured, or a checker's
+     * first colour) the frame's (rt_scene_prepare), the same value */
+    rt_color col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
+        ? m->ambient_term
+        : c3_scale(c3_mul(base, s->ambient), m->ambient);
     h.base = base;
     int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
     for (int i = 0; i < nlights; i++) {
