@@ -127,6 +127,53 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
     return state;
 }
 
+static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
+                          real travelled, int from);
+
+/* The reflected and refracted rays of hit h (trace_ray's, at recursion depth `depth` > 0 and
+ * weight `weight`), added to col. Out of line on ARM (RT_OUT_OF_LINE): trace_ray's own frame
+ * then keeps less in registers. */
+static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h, int depth,
+                                               real weight, int level, real travelled, rt_color col)
+{
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    const dir3 d = h->d, n = h->n;
+    const int inside = h->inside;
+    real kr = m->reflect;
+    /* d . n for the facing normal: dn itself, unless n was turned (rounding -(d . n) and
+     * negating the rounded value can differ by a step) */
+    unit dk = inside ? d3_dot(d, n) : h->dn;
+    if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
+        dir3 rd;
+        real eta = inside ? m->ior : m->ior_inv;
+        if (d3_refract_k(d, n, dk, eta, &rd)) {
+            real wt = r_mul_in(weight, m->transmit);
+            if (wt >= c->min_contrib) { /* adaptive recursion control */
+                c->stats->rays_refract++;
+                vec3 p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
+                rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
+                col = c3_madd(col, tc, m->transmit);
+            }
+        } else {
+            kr = r_add(kr, m->transmit); /* total internal reflection */
+        }
+    }
+    real wr = r_mul_in(weight, kr);
+    if (kr > 0 && wr >= c->min_contrib) {
+        c->stats->rays_reflect++;
+        /* Mirrored off a plane's front, it cannot meet the plane again: it starts
+         * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
+         * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
+         * be off by more than that. Every object is tested when effects are forced.) */
+        int self = !inside && !s->forced && s->objects[h->id].kind == RT_PLANE ? h->id : -1;
+        rt_color rc = trace_ray(c, h->p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
+                                travelled, self);
+        col = c3_madd(col, rc, kr);
+    }
+    return col;
+}
+
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel, `travelled`
  * the length of its path from the eye to org, `from` the plane it leaves by mirroring (or -1). */
 static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
@@ -162,7 +209,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     h.id = id;
     h.inside = inside;
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    const vec3 p_out = h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
+    h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
      * primary hit. */
@@ -195,40 +242,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * origin is then inside the cube or the hit of a ray cast from it, so within
      * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
-     * what it mirrors is below a pixel. */
-    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
-        real kr = m->reflect;
-        /* d . n for the facing normal: dn itself, unless n was turned (rounding -(d . n) and
-         * negating the rounded value can differ by a step) */
-        unit dk = inside ? d3_dot(d, n) : dn;
-        if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
-            dir3 rd;
-            real eta = inside ? m->ior : m->ior_inv;
-            if (d3_refract_k(d, n, dk, eta, &rd)) {
-                real wt = r_mul_in(weight, m->transmit);
-                if (wt >= c->min_contrib) { /* adaptive recursion control */
-                    c->stats->rays_refract++;
-                    vec3 p_in = v3_along_in(p, n, r_neg(R_EPS_OFFSET));
-                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
-                    col = c3_madd(col, tc, m->transmit);
-                }
-            } else {
-                kr = r_add(kr, m->transmit); /* total internal reflection */
-            }
-        }
-        real wr = r_mul_in(weight, kr);
-        if (kr > 0 && wr >= c->min_contrib) {
-            c->stats->rays_reflect++;
-            /* Mirrored off a plane's front, it cannot meet the plane again: it starts
-             * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
-             * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
-             * be off by more than that. Every object is tested when effects are forced.) */
-            int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
-            rt_color rc = trace_ray(c, p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
-                                    travelled, self);
-            col = c3_madd(col, rc, kr);
-        }
-    }
+     * what it mirrors is below a pixel. A material that neither reflects nor transmits casts
+     * neither ray. */
+    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) &&
+        (m->reflect > 0 || (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0)) &&
+        v3_within(p, R_SCENE_MAX))
+        col = trace_secondary(c, &h, depth, weight, level, travelled, col);
     return col;
 }
 
