@@ -529,6 +529,24 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
 }
 
 #if FX_UF == 30
+/* fx_renorm's second-order correction of (a, b, c), a Q.60 vector rounded to Q2.30, into *out;
+ * 0 (and nothing written) when it is further than 2^-12 from unit. */
+static inline int fx_renorm_q30(int32_t a, int32_t b, int32_t c, dir3 *out)
+{
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    if (e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48))
+        return 0;
+    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
+     * and g fit 32 bits, so the products are signed 32x32-bit ones */
+    int32_t e40 = (int32_t)(e >> 20);
+    int32_t sq = (int32_t)(((int64_t)e40 * e40) >> 40); /* below 2^16 */
+    int32_t g = (e40 >> 1) - ((3 * sq) >> 3);           /* below 2^27 */
+    out->x = a - (int32_t)fx_round_shift((int64_t)a * g, 40);
+    out->y = b - (int32_t)fx_round_shift((int64_t)b * g, 40);
+    out->z = c - (int32_t)fx_round_shift((int64_t)c * g, 40);
+    return 1;
+}
+
 /* Unit vector along a Q.60 vector that is already unit to within 2^-12 (reflected and
  * refracted directions, a sphere's p - c times 1/r): rounded to Q2.30 and corrected by
  * v * (1 - e/2 + 3e^2/8), e = |v|^2 - 1, the series of 1/sqrt(1 + e) to second order (what it
@@ -543,16 +561,9 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
         return fx_norm64(x, y, z, 60, 0);
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
-    if (__builtin_expect(e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48), 0))
+    dir3 d;
+    if (__builtin_expect(!fx_renorm_q30(a, b, c, &d), 0))
         return fx_norm64(x, y, z, 60, 0);
-    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
-     * and g fit 32 bits, so the products are signed 32x32-bit ones */
-    int32_t e40 = (int32_t)(e >> 20);
-    int32_t g = (e40 >> 1) - (int32_t)((3 * (((int64_t)e40 * e40) >> 40)) >> 3); /* below 2^27 */
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
-              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
-              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
     return d;
 }
 #else
@@ -598,13 +609,34 @@ static inline rinv r_inv_len(real r)
  * root or division. Any other v gets d3_norm's result. */
 static inline dir3 d3_norm_near(vec3 v, rinv k)
 {
-    int64_t lim = (int64_t)k.r * 2;
-    if (k.m == 0 || v.x > lim || v.x < -lim || v.y > lim || v.y < -lim || v.z > lim || v.z < -lim)
+    if (k.m == 0)
+        return FX_NORM_REALS(v.x, v.y, v.z, 0);
+    /* r < 2^28 (k.m != 0), so 2 r fits 32 bits: each |v.x| <= 2 r by one unsigned compare */
+    uint32_t lim = 2u * (uint32_t)k.r;
+    if ((uint32_t)v.x + lim > 2 * lim || (uint32_t)v.y + lim > 2 * lim ||
+        (uint32_t)v.z + lim > 2 * lim)
         return FX_NORM_REALS(v.x, v.y, v.z, 0);
 #if FX_UF == 30
-    /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^59; times 2^(60 - s) it is v.x / r in Q.60 */
+    /* p = v.x m, |p| <= 2 r m, about 2^(s+1) <= 2^59; x = p 2^(60 - s) is v.x / r in Q.60, which
+     * fx_renorm would take: the same steps on p. x is in its range [-2^61, 2^61) exactly when p
+     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [10, 28], i.e. when p's high word is in
+     * [-2^(sh-1), 2^(sh-1)); and x rounded to Q2.30, (x + 2^29) / 2^30, is (p + 2^(sh-1)) / 2^sh,
+     * whose low word comes from the two words of the sum: no 64-bit shift by a variable. */
+    int sh = k.s - 30;
+    uint32_t half = 1u << (sh - 1);
+    int64_t px = (int64_t)v.x * k.m, py = (int64_t)v.y * k.m, pz = (int64_t)v.z * k.m;
+    if ((uint32_t)(px >> 32) + half < 2 * half && (uint32_t)(py >> 32) + half < 2 * half &&
+        (uint32_t)(pz >> 32) + half < 2 * half) {
+        uint64_t qx = (uint64_t)px + half, qy = (uint64_t)py + half, qz = (uint64_t)pz + half;
+        dir3 d;
+        if (fx_renorm_q30((int32_t)(((uint32_t)qx >> sh) | ((uint32_t)(qx >> 32) << (32 - sh))),
+                          (int32_t)(((uint32_t)qy >> sh) | ((uint32_t)(qy >> 32) << (32 - sh))),
+                          (int32_t)(((uint32_t)qz >> sh) | ((uint32_t)(qz >> 32) << (32 - sh))),
+                          &d))
+            return d;
+    }
     int64_t f = (int64_t)1 << (60 - k.s);
-    return fx_renorm(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
+    return fx_norm64(px * f, py * f, pz * f, 60, 0);
 #else
     /* v.x m / 2^s is v.x / r; s >= 40 (r >= 1/128), so Q.32 is a right shift by s - 32 */
     int sh = k.s - 32;
