@@ -69,6 +69,8 @@ static inline real r_shr(real a, int n)
 /* In-range arithmetic: the same operations (the fixed build's release form skips range checks). */
 static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
 static inline real r_add_in(real a, real b) { return r_add(a, b); }
+/* r_mul_in of two colour values or weights (the fixed build's r_mul_c): the same. */
+static inline real r_mul_c(real a, real b) { return r_mul_in(a, b); }
 
 static inline real r_mul_sign(real v, int g) { return g > 0 ? v : (g < 0 ? -v : 0.0f); }
 

@@ -117,7 +117,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
         unit ndn = u_neg(u_mul_in(ndl, h->dn));
         unit vr = u_add_in(u_add_in(d3_dot(h->d, l), ndn), ndn);
         if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
-            real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
+            real spec = r_mul_c(m->specular, u_to_real(u_pow(vr, m->shininess)));
             acc = c3_madd(acc, li->color, spec);
             if (spec > RT_HIGHLIGHT_MIN)
                 state = 2;
@@ -148,7 +148,7 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
         dir3 rd;
         real eta = inside ? m->ior : m->ior_inv;
         if (d3_refract_k(d, n, dk, eta, &rd)) {
-            real wt = r_mul_in(weight, m->transmit);
+            real wt = r_mul_c(weight, m->transmit);
             if (wt >= c->min_contrib) { /* adaptive recursion control */
                 c->stats->rays_refract++;
                 vec3 p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
@@ -159,7 +159,7 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
             kr = r_add(kr, m->transmit); /* total internal reflection */
         }
     }
-    real wr = r_mul_in(weight, kr);
+    real wr = r_mul_c(weight, kr);
     if (kr > 0 && wr >= c->min_contrib) {
         c->stats->rays_reflect++;
         /* Mirrored off a plane's front, it cannot meet the plane again: it starts
