@@ -40,7 +40,7 @@ SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tm
 
 static dir3 sphere_normal(const rt_object *o, vec3 p)
 {
-    return d3_norm_near(v3_sub(p, o->center), o->inv_radius); /* |p - c| is about r */
+    return d3_norm_near(v3_sub_in(p, o->center), o->inv_radius); /* |p - c| is about r */
 }
 
 SHAPES_INLINE int plane_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)

@@ -71,7 +71,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
     /* A light behind the surface, or exactly on the point (no direction: it lights the
      * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
      * cost of a normalisation. */
-    vec3 to_light = v3_sub(li->pos, h->p);
+    vec3 to_light = v3_sub_in(li->pos, h->p);
     if (!v3_faces(to_light, n))
         return 0;
     real dist;
@@ -92,7 +92,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
         real sdist = dist;
         dir3 sl = l;
         if (s->near_lights & (1u << i)) {
-            vec3 to_light_out = v3_sub(li->pos, h->p_out);
+            vec3 to_light_out = v3_sub_in(li->pos, h->p_out);
             sdist = 0;
             if (!v3_is_zero(to_light_out))
                 sl = d3_norm(to_light_out, &sdist);
