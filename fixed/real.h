@@ -80,12 +80,14 @@ typedef struct rinv {  /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
     int32_t s;
     fix16_t r;
 } rinv;
+typedef int32_t rcull; /* a sphere's quick ray rejection as a bound on c . d: r_cull */
 #else
 typedef float real;
 typedef float unit;
 typedef float ustep;
 typedef float wide;
 typedef float rinv;
+typedef float rcull;
 #endif
 
 typedef struct vec3 {

@@ -451,6 +451,24 @@ static inline real r_sqrt_w(wide a)
     return fx_sat(fx_isqrt64((uint64_t)a));
 }
 
+/* A sphere's quick rejection of rays, the test "c . d >= 0 or (c . d)^2 < k" for a k > 0
+ * (rt_scene_prepare's scene_cull), prepared once per frame as one bound: for an integer cd < 0,
+ * cd^2 < k exactly when -cd < T, T = ceil(sqrt(k)) (T >= 1), so the test is cd > -T, one 32-bit
+ * compare. T is below 2^30 for the scene's k (below |c|^2, |c| < 14190); it is capped at R_MAX
+ * all the same. k <= 0 (no rejection) gives 0, which r_cull_rejects is not asked about. */
+static inline rcull r_cull(wide k)
+{
+    if (k <= 0)
+        return 0;
+    uint64_t t = fx_isqrt64((uint64_t)k); /* rounded: ceil(sqrt(k)) or one below */
+    if (t * t < (uint64_t)k)
+        t++;
+    return t > (uint64_t)R_MAX ? -R_MAX : -(rcull)t;
+}
+
+/* Does the rejection c (non-zero, from r_cull) reject a ray with c . d = cd? */
+static inline int r_cull_rejects(real cd, rcull c) { return cd > c; }
+
 /* sqrt(a^2 + b^2) without overflow for any a, b (saturates only when the result does). */
 static inline real r_hypot(real a, real b)
 {

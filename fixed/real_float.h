@@ -198,6 +198,12 @@ static inline wide w_sub(wide a, wide b) { return a - b; }
 
 static inline wide w_len2(vec3 a) { return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z); }
 
+/* A sphere's quick rejection of rays (the fixed build's r_cull): k itself, 0 for none; it
+ * rejects when c . d >= 0 or (c . d)^2 < k. */
+static inline rcull r_cull(wide k) { return k > 0 ? k : 0; }
+
+static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) < c; }
+
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
 
 static inline real r_hypot(real a, real b) { return fl_chk(sqrtf(a * a + b * b)); }

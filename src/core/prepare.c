@@ -197,7 +197,7 @@ static void scene_bound(rt_scene *s)
     s->bound_radius = radius;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->bound_shadow_cull[l] =
-            l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+            l < s->nlights ? r_cull(scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2))) : 0;
 }
 
 /* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
@@ -245,8 +245,9 @@ void rt_scene_prepare(rt_scene *s)
             const rt_object *o = &s->objects[i];
             if (scene_light_near(o, s->lights[l].pos))
                 s->near_lights |= 1u << l;
-            s->shadow_cull[l][i] =
-                o->kind == RT_SPHERE ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)) : 0;
+            s->shadow_cull[l][i] = o->kind == RT_SPHERE
+                ? r_cull(scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2)))
+                : 0;
         }
     s->eye_at = s->camera.eye;
     for (int i = 0; i < s->nobjects; i++) {

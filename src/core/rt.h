@@ -121,9 +121,10 @@ typedef struct rt_scene {
     uint32_t near_lights;              /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
     /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
-     * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 and
-     * shadow_cull[l][i] > 0, or (c . d)^2 < shadow_cull[l][i] (rt_scene_prepare). */
-    wide shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
+     * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 or
+     * (c . d)^2 < k, k > 0 (rt_scene_prepare), i.e. when r_cull_rejects(c . d,
+     * shadow_cull[l][i]) for a non-zero entry (the test as the numeric layer prepares it). */
+    rcull shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
     /* Per sphere, for rays from the point eye_at (the camera's eye when prepared): eye_l =
      * centre - eye_at, and the same rejection as shadow_cull (eye_cull > 0 and tca <= 0 or
      * tca^2 < eye_cull: a miss). */
@@ -137,7 +138,7 @@ typedef struct rt_scene {
     uint32_t bound_set;
     vec3 bound_center;
     real bound_radius;
-    wide bound_shadow_cull[RT_MAX_LIGHTS];
+    rcull bound_shadow_cull[RT_MAX_LIGHTS];
 } rt_scene;
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is

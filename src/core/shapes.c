@@ -155,16 +155,14 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 o
                 real dist)
 {
     const dotpart lpd = v3_dot_part(s->lights[light].pos, d);
-    const wide *cull = s->shadow_cull[light];
+    const rcull *cull = s->shadow_cull[light];
     uint32_t tested = 0;
     int blocked = 0;
     /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
-    wide kb = s->bound_shadow_cull[light];
-    if (kb > 0 && (occ & s->bound_set)) {
-        real cd = v3_dot_d_from(s->bound_center, d, lpd);
-        if (cd >= 0 || w_sq(cd) < kb)
-            occ &= ~s->bound_set;
-    }
+    rcull kb = s->bound_shadow_cull[light];
+    if (kb != 0 && (occ & s->bound_set) &&
+        r_cull_rejects(v3_dot_d_from(s->bound_center, d, lpd), kb))
+        occ &= ~s->bound_set;
     /* Set bits in increasing order (the objects' order); counted once, after the loop. */
     for (; occ; occ &= occ - 1) {
         int i = __builtin_ctz(occ);
@@ -173,12 +171,9 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 o
         /* The ray from the light back along -d passes too far from the sphere for this
          * segment to reach it (rt_scene_prepare): the full test would miss. A plane's entry
          * is 0. */
-        wide k = cull[i];
-        if (k > 0) {
-            real cd = v3_dot_d_from(o->center, d, lpd); /* (centre - light) . d */
-            if (cd >= 0 || w_sq(cd) < k)
-                continue;
-        }
+        rcull k = cull[i];
+        if (k != 0 && r_cull_rejects(v3_dot_d_from(o->center, d, lpd), k)) /* (c - light) . d */
+            continue;
         if (shapes_blocks(o, &org, &d, dist)) {
             blocked = 1;
             break;
