@@ -469,6 +469,30 @@ static inline rcull r_cull(wide k)
 /* Does the rejection c (non-zero, from r_cull) reject a ray with c . d = cd? */
 static inline int r_cull_rejects(real cd, rcull c) { return cd > c; }
 
+/* r_sqrt_w(a) < t, for 0 <= a <= 2^56 and any t, without the square root: r_sqrt_w is
+ * fx_isqrt64, the rr with a - rr^2 in (-rr, rr], at most 2^28; for t >= 1, rr < t exactly when
+ * rr <= t - 1, i.e. when a <= (t - 1)^2 + (t - 1) = t^2 - t (x^2 + x grows with x). */
+static inline int r_sqrt_w_below(wide a, int64_t t)
+{
+    if (t <= 0)
+        return 0;
+    if (t > ((int64_t)1 << 28))
+        return 1;
+    return a <= t * t - t;
+}
+
+/* The sphere test's last step for a shadow segment, without its square root: with
+ * thc = r_sqrt_w(a) (a = r^2 - |perp|^2 in [0, r^2], r <= 2048: a <= 2^54), the near hit
+ * tca - thc if positive, else the far one tca + thc: is it in (0, tmax)? The same answer as
+ * forming them (|tca| <= 30572 and thc <= 2048, so neither sum saturates), from comparisons of
+ * thc with the integers tca - tmax, -tca and tmax - tca (formed in 64 bits). */
+static inline int r_sphere_span(wide a, real tca, real tmax)
+{
+    if (r_sqrt_w_below(a, tca)) /* thc < tca: the near hit is positive; before tmax? */
+        return !r_sqrt_w_below(a, (int64_t)tca - tmax + 1);
+    return !r_sqrt_w_below(a, 1 - (int64_t)tca) && r_sqrt_w_below(a, (int64_t)tmax - tca);
+}
+
 /* sqrt(a^2 + b^2) without overflow for any a, b (saturates only when the result does). */
 static inline real r_hypot(real a, real b)
 {

@@ -206,6 +206,17 @@ static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) 
 
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
 
+/* The sphere test's last step for a shadow segment (the fixed build forms it without the
+ * square root): the near hit tca - thc if positive, else tca + thc, in (0, tmax)? */
+static inline int r_sphere_span(wide a, real tca, real tmax)
+{
+    real thc = r_sqrt_w(a);
+    real hit = r_sub(tca, thc);
+    if (hit <= 0)
+        hit = r_add(tca, thc);
+    return hit > 0 && hit < tmax;
+}
+
 static inline real r_hypot(real a, real b) { return fl_chk(sqrtf(a * a + b * b)); }
 
 /* ---- vectors ----------------------------------------------------------------------------- */

@@ -74,13 +74,8 @@ const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
     [RT_PLANE] = {plane_intersect, plane_normal},
 };
 
-/* Both loops below call the shape tests directly rather than through rt_shapes: the compiler
+/* The loops below call the shape tests directly rather than through rt_shapes: the compiler
  * then inlines them, which saves the indirect call and the passing of the ray per object. */
-SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
-{
-    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
-                                : plane_intersect(o, org, d, tmax, t);
-}
 
 /* The plane test out of line, for the loops over objects: planes are few, and the spheres'
  * loop then keeps the ray in registers. */
@@ -142,13 +137,31 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, real *t)
     return best;
 }
 
+/* sphere_intersect's answer for a shadow segment, whose hit point is not needed: the same
+ * steps up to the discriminant, then r_sphere_span decides where the hit would lie (the fixed
+ * build without the square root). */
+SHAPES_INLINE int sphere_blocks(const rt_object *o, vec3 org, dir3 d, real tmax)
+{
+    vec3 l = v3_sub_in(o->center, org);
+    real tca = v3_dot_d_in(l, d);
+    if (tca < 0 && w_len2(l) > o->radius2)
+        return 0;
+    if (tca > r_add(tmax, o->radius))
+        return 0;
+    wide d2 = w_len2(v3_sub_in(l, d3_scale_in(d, tca)));
+    if (d2 > o->radius2)
+        return 0;
+    return r_sphere_span(w_sub(o->radius2, d2), tca, tmax);
+}
+
 /* The full test of a shadow-ray candidate, kept out of line: the loop below then holds the ray
  * and the light in registers instead of sharing them with the intersection code (RT_OUT_OF_LINE). */
 static RT_OUT_OF_LINE int shapes_blocks(const rt_object *o, const vec3 *org, const dir3 *d,
                                         real dist)
 {
     real hit;
-    return shapes_intersect(o, *org, *d, dist, &hit);
+    return o->kind == RT_SPHERE ? sphere_blocks(o, *org, *d, dist)
+                                : plane_intersect(o, *org, *d, dist, &hit);
 }
 
 int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
