@@ -159,20 +159,37 @@ static inline vec3 v3_mul(vec3 a, vec3 b)
 /* a + b * s, component-wise. */
 static inline vec3 v3_madd(vec3 a, vec3 b, real s) { return v3_add(a, v3_scale(b, s)); }
 
-/* Colours (rt_color): a * s, a * b component-wise, and a + b * s, by r_mul_c and r_add_in: no
- * range check in the fixed release build, where the colour bound (non-negative values within
- * [0, 1161]) makes none necessary. */
+/* Colours (rt_color): a * s, a * b component-wise, and a + b * s, by r_mul_in and r_add_in: no
+ * range check in the fixed release build, where the colour bound makes none necessary. */
 static inline vec3 c3_scale(vec3 a, real s)
 {
-    return v3(r_mul_c(a.x, s), r_mul_c(a.y, s), r_mul_c(a.z, s));
+    return v3(r_mul_in(a.x, s), r_mul_in(a.y, s), r_mul_in(a.z, s));
 }
 
 static inline vec3 c3_mul(vec3 a, vec3 b)
 {
-    return v3(r_mul_c(a.x, b.x), r_mul_c(a.y, b.y), r_mul_c(a.z, b.z));
+    return v3(r_mul_in(a.x, b.x), r_mul_in(a.y, b.y), r_mul_in(a.z, b.z));
 }
 
 static inline vec3 c3_madd(vec3 a, vec3 b, real s)
+{
+    return v3(r_add_in(a.x, r_mul_in(b.x, s)), r_add_in(a.y, r_mul_in(b.y, s)),
+              r_add_in(a.z, r_mul_in(b.z, s)));
+}
+
+/* The same for the shading's non-negative colours and weights (within [0, 1161]; not for
+ * differences of colours): products by r_mul_c, the same values. */
+static inline vec3 c3_scale_p(vec3 a, real s)
+{
+    return v3(r_mul_c(a.x, s), r_mul_c(a.y, s), r_mul_c(a.z, s));
+}
+
+static inline vec3 c3_mul_p(vec3 a, vec3 b)
+{
+    return v3(r_mul_c(a.x, b.x), r_mul_c(a.y, b.y), r_mul_c(a.z, b.z));
+}
+
+static inline vec3 c3_madd_p(vec3 a, vec3 b, real s)
 {
     return v3(r_add_in(a.x, r_mul_c(b.x, s)), r_add_in(a.y, r_mul_c(b.y, s)),
               r_add_in(a.z, r_mul_c(b.z, s)));

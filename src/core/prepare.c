@@ -237,7 +237,7 @@ void rt_scene_prepare(rt_scene *s)
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
         m->spec_zero = m->specular > 0 ? scene_spec_zero(m->shininess) : 0;
-        m->ambient_term = c3_scale(c3_mul(m->diffuse, s->ambient), m->ambient);
+        m->ambient_term = c3_scale_p(c3_mul_p(m->diffuse, s->ambient), m->ambient);
     }
     s->near_lights = 0;
     for (int l = 0; l < s->nlights; l++)

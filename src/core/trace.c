@@ -106,7 +106,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
             return 0;
     }
     const rt_material *m = h->m;
-    rt_color acc = c3_madd(*col, c3_mul(li->color, h->base), u_to_real(ndl)); /* Lambert */
+    rt_color acc = c3_madd_p(*col, c3_mul_p(li->color, h->base), u_to_real(ndl)); /* Lambert */
     uint8_t state = 1;
     if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
         /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
@@ -118,7 +118,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
         unit vr = u_add_in(u_add_in(d3_dot(h->d, l), ndn), ndn);
         if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
             real spec = r_mul_c(m->specular, u_to_real(u_pow(vr, m->shininess)));
-            acc = c3_madd(acc, li->color, spec);
+            acc = c3_madd_p(acc, li->color, spec);
             if (spec > RT_HIGHLIGHT_MIN)
                 state = 2;
         }
@@ -153,7 +153,7 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
                 c->stats->rays_refract++;
                 vec3 p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
                 rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
-                col = c3_madd(col, tc, m->transmit);
+                col = c3_madd_p(col, tc, m->transmit);
             }
         } else {
             kr = r_add(kr, m->transmit); /* total internal reflection */
@@ -169,7 +169,7 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
         int self = !inside && !s->forced && s->objects[h->id].kind == RT_PLANE ? h->id : -1;
         rt_color rc = trace_ray(c, h->p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
                                 travelled, self);
-        col = c3_madd(col, rc, kr);
+        col = c3_madd_p(col, rc, kr);
     }
     return col;
 }
@@ -184,7 +184,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     int id = level == 0 && c->eye_prepared ? rt_nearest_primary(s, d, &t)
                                            : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
     if (id < 0) {
-        trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
+        trace_record(c, RT_NO_OBJECT, level, c3_scale_p(s->background, weight));
         return s->background;
     }
     const rt_object *o = &s->objects[id];
@@ -227,7 +227,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * first colour) the frame's (rt_scene_prepare), the same value */
     rt_color col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
         ? m->ambient_term
-        : c3_scale(c3_mul(base, s->ambient), m->ambient);
+        : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
     h.base = base;
     int nlights = TRACE_PROBE(c) && level > 0 ? 0 : s->nlights;
     for (int i = 0; i < nlights; i++) {
@@ -236,7 +236,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
             c->sample->light_state[i] = state;
     }
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
-    trace_record(c, id, level, weight == R_ONE ? col : c3_scale(col, weight));
+    trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within
