@@ -169,6 +169,17 @@ void u_sincos_deg(real deg, unit *s, unit *c)
 
 static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t)v; }
 
+/* The largest magnitude of three 32-bit components (at most 2^31), in 32-bit arithmetic. */
+static inline uint32_t fx_max_abs3_32(int32_t x, int32_t y, int32_t z)
+{
+    uint32_t m = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
+    uint32_t t = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
+    if (t > m)
+        m = t;
+    t = z < 0 ? 0u - (uint32_t)z : (uint32_t)z;
+    return t > m ? t : m;
+}
+
 /* The largest magnitude of three components: normalisation scales by it. */
 static uint64_t fx_max_abs3(int64_t x, int64_t y, int64_t z)
 {
@@ -247,8 +258,10 @@ static inline unit fx_mul_r(int32_t v, int32_t rl, uint32_t rh, uint64_t half, i
  * [2^58, 3 * 2^60). No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64)
  * (k = 2 or 4), r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each
  * component of the unit vector, in Q2.30, is sx r / 2^(34 - k/2) (fx_mul_r), below 2^63 before
- * the shift. */
-static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int frac, real *len)
+ * the shift. Inlined into both callers: fx_norm32's copy (light directions, the most frequent)
+ * then has frac = 16 and the call is saved. */
+static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz,
+                                                                 int s, int frac, real *len)
 {
     dir3 d;
     uint64_t sum =
@@ -291,21 +304,35 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
      * ones lose only bits far below the result's precision (shifted right, rounded down). */
     int s = __builtin_clzll(m) - 34;
-    if (s >= 0)
-        return fx_norm_scaled((int32_t)(x * ((int64_t)1 << s)), (int32_t)(y * ((int64_t)1 << s)),
-                              (int32_t)(z * ((int64_t)1 << s)), s, frac, len);
-    return fx_norm_scaled((int32_t)(x >> -s), (int32_t)(y >> -s), (int32_t)(z >> -s), s, frac, len);
+    int32_t sx, sy, sz;
+    if (s >= 0) {
+        sx = (int32_t)(x * ((int64_t)1 << s));
+        sy = (int32_t)(y * ((int64_t)1 << s));
+        sz = (int32_t)(z * ((int64_t)1 << s));
+    } else {
+        sx = (int32_t)(x >> -s);
+        sy = (int32_t)(y >> -s);
+        sz = (int32_t)(z >> -s);
+    }
+    return fx_norm_scaled(sx, sy, sz, s, frac, len); /* one inlined copy */
 }
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = (uint32_t)fx_max_abs3(x, y, z); /* at most 2^31 */
+    uint32_t m = fx_max_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
     int s = __builtin_clz(m) - 2; /* m 2^s in [2^29, 2^30): s >= -2 */
-    if (s >= 0)
-        return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
-    return fx_norm_scaled(x >> -s, y >> -s, z >> -s, s, 16, len);
+    if (s >= 0) {
+        x *= 1 << s;
+        y *= 1 << s;
+        z *= 1 << s;
+    } else {
+        x >>= -s;
+        y >>= -s;
+        z >>= -s;
+    }
+    return fx_norm_scaled(x, y, z, s, 16, len); /* one inlined copy */
 }
 
 #else
@@ -368,7 +395,7 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = (uint32_t)fx_max_abs3(x, y, z); /* at most 2^31 */
+    uint32_t m = fx_max_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
     int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */

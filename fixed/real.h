@@ -80,12 +80,14 @@ typedef struct rinv {  /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
     int32_t s;
     fix16_t r;
 } rinv;
+typedef int32_t rcull; /* a sphere's quick ray rejection as a bound on c . d: r_cull */
 #else
 typedef float real;
 typedef float unit;
 typedef float ustep;
 typedef float wide;
 typedef float rinv;
+typedef float rcull;
 #endif
 
 typedef struct vec3 {
@@ -175,6 +177,24 @@ static inline vec3 c3_madd(vec3 a, vec3 b, real s)
               r_add_in(a.z, r_mul_in(b.z, s)));
 }
 
+/* The same for the shading's non-negative colours and weights (within [0, 1161]; not for
+ * differences of colours): products by r_mul_c, the same values. */
+static inline vec3 c3_scale_p(vec3 a, real s)
+{
+    return v3(r_mul_c(a.x, s), r_mul_c(a.y, s), r_mul_c(a.z, s));
+}
+
+static inline vec3 c3_mul_p(vec3 a, vec3 b)
+{
+    return v3(r_mul_c(a.x, b.x), r_mul_c(a.y, b.y), r_mul_c(a.z, b.z));
+}
+
+static inline vec3 c3_madd_p(vec3 a, vec3 b, real s)
+{
+    return v3(r_add_in(a.x, r_mul_c(b.x, s)), r_add_in(a.y, r_mul_c(b.y, s)),
+              r_add_in(a.z, r_mul_c(b.z, s)));
+}
+
 /* The point o + d * t on a ray. */
 static inline vec3 v3_along(vec3 o, dir3 d, real t)
 {
@@ -195,7 +215,15 @@ static inline vec3 v3_along_in(vec3 o, dir3 d, real t)
 /* Is every coordinate of p within [-lim, lim]? */
 static inline int v3_within(vec3 p, real lim)
 {
+#if REAL_FIXED
+    /* for 0 <= lim <= R_MAX: a in [-lim, lim] exactly when a + lim, taken modulo 2^32, is at most
+     * 2 lim (one add and one unsigned compare a coordinate) */
+    uint32_t span = 2u * (uint32_t)lim;
+    return ((uint32_t)p.x + (uint32_t)lim <= span) & ((uint32_t)p.y + (uint32_t)lim <= span) &
+        ((uint32_t)p.z + (uint32_t)lim <= span);
+#else
     return p.x <= lim && p.x >= -lim && p.y <= lim && p.y >= -lim && p.z <= lim && p.z >= -lim;
+#endif
 }
 
 /* Is v the zero vector (which has no direction: test before d3_norm)? */

@@ -168,7 +168,15 @@ static inline real r_sub(real a, real b)
 #endif
 }
 
-static inline real r_neg(real a) { return fx_sat(-(int64_t)a); }
+/* -a: fx_sat(-a), whose only out-of-range case is a = INT32_MIN (to R_MAX), tested alone. */
+static inline real r_neg(real a)
+{
+    if (__builtin_expect(a == INT32_MIN, 0)) {
+        FX_EVENT(FX_EV_OVERFLOW);
+        return R_MAX;
+    }
+    return -a;
+}
 
 static inline real r_abs(real a) { return a < 0 ? r_neg(a) : a; }
 
@@ -204,6 +212,15 @@ static inline real r_mul_in(real a, real b)
     return (real)((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint32_t)b); }
+#endif
+
+/* r_mul_in of two colour values or weights, within [0, 1161] (docs/numerics.md, Colours): the
+ * product is not negative, so the rounding needs no sign term (two instructions fewer on ARM);
+ * the same result. The event-counting builds use r_mul (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline real r_mul_c(real a, real b) { return r_mul(a, b); }
+#else
+static inline real r_mul_c(real a, real b) { return (real)(((int64_t)a * b + 0x8000) >> 16); }
 #endif
 
 /* a * 2^-n for n >= 0, rounded. */
@@ -371,6 +388,14 @@ static inline unit u_neg_in(unit a) { return r_neg_in(a); }
 
 static inline unit u_add(unit a, unit b) { return r_add(a, b); }
 
+/* u_add of values whose sum docs/numerics.md bounds inside unit's range (the Phong term's
+ * partial sums, within [-1, 1]): unchecked in the release build (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline unit u_add_in(unit a, unit b) { return u_add(a, b); }
+#else
+static inline unit u_add_in(unit a, unit b) { return (unit)((uint32_t)a + (uint32_t)b); }
+#endif
+
 /* unit * integer (pixel offsets along the image plane). */
 static inline unit u_muli(unit a, int32_t i) { return u_sat((int64_t)a * i); }
 
@@ -461,6 +486,48 @@ static inline real r_sqrt_w(wide a)
     return fx_sat(fx_isqrt64((uint64_t)a));
 }
 
+/* A sphere's quick rejection of rays, the test "c . d >= 0 or (c . d)^2 < k" for a k > 0
+ * (rt_scene_prepare's scene_cull), prepared once per frame as one bound: for an integer cd < 0,
+ * cd^2 < k exactly when -cd < T, T = ceil(sqrt(k)) (T >= 1), so the test is cd > -T, one 32-bit
+ * compare. T is below 2^30 for the scene's k (below |c|^2, |c| < 14190); it is capped at R_MAX
+ * all the same. k <= 0 (no rejection) gives 0, which r_cull_rejects is not asked about. */
+static inline rcull r_cull(wide k)
+{
+    if (k <= 0)
+        return 0;
+    uint64_t t = fx_isqrt64((uint64_t)k); /* rounded: ceil(sqrt(k)) or one below */
+    if (t * t < (uint64_t)k)
+        t++;
+    return t > (uint64_t)R_MAX ? -R_MAX : -(rcull)t;
+}
+
+/* Does the rejection c (non-zero, from r_cull) reject a ray with c . d = cd? */
+static inline int r_cull_rejects(real cd, rcull c) { return cd > c; }
+
+/* r_sqrt_w(a) < t, for 0 <= a <= 2^56 and any t, without the square root: r_sqrt_w is
+ * fx_isqrt64, the rr with a - rr^2 in (-rr, rr], at most 2^28; for t >= 1, rr < t exactly when
+ * rr <= t - 1, i.e. when a <= (t - 1)^2 + (t - 1) = t^2 - t (x^2 + x grows with x). */
+static inline int r_sqrt_w_below(wide a, int64_t t)
+{
+    if (t <= 0)
+        return 0;
+    if (t > ((int64_t)1 << 28))
+        return 1;
+    return a <= t * t - t;
+}
+
+/* The sphere test's last step for a shadow segment, without its square root: with
+ * thc = r_sqrt_w(a) (a = r^2 - |perp|^2 in [0, r^2], r <= 2048: a <= 2^54), the near hit
+ * tca - thc if positive, else the far one tca + thc: is it in (0, tmax)? The same answer as
+ * forming them (|tca| <= 30572 and thc <= 2048, so neither sum saturates), from comparisons of
+ * thc with the integers tca - tmax, -tca and tmax - tca (formed in 64 bits). */
+static inline int r_sphere_span(wide a, real tca, real tmax)
+{
+    if (r_sqrt_w_below(a, tca)) /* thc < tca: the near hit is positive; before tmax? */
+        return !r_sqrt_w_below(a, (int64_t)tca - tmax + 1);
+    return !r_sqrt_w_below(a, 1 - (int64_t)tca) && r_sqrt_w_below(a, (int64_t)tmax - tca);
+}
+
 /* sqrt(a^2 + b^2) without overflow for any a, b (saturates only when the result does). */
 static inline real r_hypot(real a, real b)
 {
@@ -548,6 +615,24 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
 }
 
 #if FX_UF == 30
+/* fx_renorm's second-order correction of (a, b, c), a Q.60 vector rounded to Q2.30, into *out;
+ * 0 (and nothing written) when it is further than 2^-12 from unit. */
+static inline int fx_renorm_q30(int32_t a, int32_t b, int32_t c, dir3 *out)
+{
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    if (e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48))
+        return 0;
+    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
+     * and g fit 32 bits, so the products are signed 32x32-bit ones */
+    int32_t e40 = (int32_t)(e >> 20);
+    int32_t sq = (int32_t)(((int64_t)e40 * e40) >> 40); /* below 2^16 */
+    int32_t g = (e40 >> 1) - ((3 * sq) >> 3);           /* below 2^27 */
+    out->x = a - (int32_t)fx_round_shift((int64_t)a * g, 40);
+    out->y = b - (int32_t)fx_round_shift((int64_t)b * g, 40);
+    out->z = c - (int32_t)fx_round_shift((int64_t)c * g, 40);
+    return 1;
+}
+
 /* Unit vector along a Q.60 vector that is already unit to within 2^-12 (reflected and
  * refracted directions, a sphere's p - c times 1/r): rounded to Q2.30 and corrected by
  * v * (1 - e/2 + 3e^2/8), e = |v|^2 - 1, the series of 1/sqrt(1 + e) to second order (what it
@@ -562,16 +647,9 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
         return fx_norm64(x, y, z, 60, 0);
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
-    if (__builtin_expect(e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48), 0))
+    dir3 d;
+    if (__builtin_expect(!fx_renorm_q30(a, b, c, &d), 0))
         return fx_norm64(x, y, z, 60, 0);
-    /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
-     * and g fit 32 bits, so the products are signed 32x32-bit ones */
-    int32_t e40 = (int32_t)(e >> 20);
-    int32_t g = (e40 >> 1) - (int32_t)((3 * (((int64_t)e40 * e40) >> 40)) >> 3); /* below 2^27 */
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
-              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
-              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
     return d;
 }
 #else
@@ -617,13 +695,34 @@ static inline rinv r_inv_len(real r)
  * root or division. Any other v gets d3_norm's result. */
 static inline dir3 d3_norm_near(vec3 v, rinv k)
 {
-    int64_t lim = (int64_t)k.r * 2;
-    if (k.m == 0 || v.x > lim || v.x < -lim || v.y > lim || v.y < -lim || v.z > lim || v.z < -lim)
+    if (k.m == 0)
+        return FX_NORM_REALS(v.x, v.y, v.z, 0);
+    /* r < 2^28 (k.m != 0), so 2 r fits 32 bits: each |v.x| <= 2 r by one unsigned compare */
+    uint32_t lim = 2u * (uint32_t)k.r;
+    if ((uint32_t)v.x + lim > 2 * lim || (uint32_t)v.y + lim > 2 * lim ||
+        (uint32_t)v.z + lim > 2 * lim)
         return FX_NORM_REALS(v.x, v.y, v.z, 0);
 #if FX_UF == 30
-    /* |v.x| m <= 2 r m, about 2^(s+1) <= 2^59; times 2^(60 - s) it is v.x / r in Q.60 */
+    /* p = v.x m, |p| <= 2 r m, about 2^(s+1) <= 2^59; x = p 2^(60 - s) is v.x / r in Q.60, which
+     * fx_renorm would take: the same steps on p. x is in its range [-2^61, 2^61) exactly when p
+     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [10, 28], i.e. when p's high word is in
+     * [-2^(sh-1), 2^(sh-1)); and x rounded to Q2.30, (x + 2^29) / 2^30, is (p + 2^(sh-1)) / 2^sh,
+     * whose low word comes from the two words of the sum: no 64-bit shift by a variable. */
+    int sh = k.s - 30;
+    uint32_t half = 1u << (sh - 1);
+    int64_t px = (int64_t)v.x * k.m, py = (int64_t)v.y * k.m, pz = (int64_t)v.z * k.m;
+    if ((uint32_t)(px >> 32) + half < 2 * half && (uint32_t)(py >> 32) + half < 2 * half &&
+        (uint32_t)(pz >> 32) + half < 2 * half) {
+        uint64_t qx = (uint64_t)px + half, qy = (uint64_t)py + half, qz = (uint64_t)pz + half;
+        dir3 d;
+        if (fx_renorm_q30((int32_t)(((uint32_t)qx >> sh) | ((uint32_t)(qx >> 32) << (32 - sh))),
+                          (int32_t)(((uint32_t)qy >> sh) | ((uint32_t)(qy >> 32) << (32 - sh))),
+                          (int32_t)(((uint32_t)qz >> sh) | ((uint32_t)(qz >> 32) << (32 - sh))),
+                          &d))
+            return d;
+    }
     int64_t f = (int64_t)1 << (60 - k.s);
-    return fx_renorm(v.x * (int64_t)k.m * f, v.y * (int64_t)k.m * f, v.z * (int64_t)k.m * f);
+    return fx_norm64(px * f, py * f, pz * f, 60, 0);
 #else
     /* v.x m / 2^s is v.x / r; s >= 40 (r >= 1/128), so Q.32 is a right shift by s - 32 */
     int sh = k.s - 32;
@@ -632,37 +731,46 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
 #endif
 }
 
-/* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised. */
-static inline dir3 d3_reflect(dir3 d, dir3 n)
+/* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised; dn = d3_dot(d, n)
+ * (the tracer has it already). |dn| <= 1 + 2^-28, so dn n.x is one signed 32 x 32-bit product
+ * (smull) and 2 dn n.x stays below 2^62. */
+static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    int64_t k = fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z, FX_UF);
-    int64_t x = (int64_t)d.x * U_ONE - 2 * k * n.x;
-    int64_t y = (int64_t)d.y * U_ONE - 2 * k * n.y;
-    int64_t z = (int64_t)d.z * U_ONE - 2 * k * n.z;
+    int64_t x = (int64_t)d.x * U_ONE - 2 * ((int64_t)dn * n.x);
+    int64_t y = (int64_t)d.y * U_ONE - 2 * ((int64_t)dn * n.y);
+    int64_t z = (int64_t)d.z * U_ONE - 2 * ((int64_t)dn * n.z);
     return fx_renorm(x, y, z);
 }
 
+static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot(d, n)); }
+
 /* Refraction of d through a surface with normal n facing the incoming ray (d.n <= 0), with
- * eta = n1 / n2 in (0, 3]. Returns 0 on total internal reflection, else 1 and *out. Formats
- * for unit in Q2.30 (Q.F below: Q.30; with unit in Q16.16, Q.16 and products in Q.32). */
-static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+ * eta = n1 / n2 in (0, 3] and dn = d3_dot(d, n). Returns 0 on total internal reflection, else
+ * 1 and *out. Formats for unit in Q2.30 (Q.F below: Q.30; with unit in Q16.16, Q.16 and
+ * products in Q.32). cosi, eta and the components are 32-bit values, so their products are
+ * signed 32 x 32-bit ones (smull); eta d.x is formed in Q.46 (below 3 * 2^46) and scaled. */
+static inline int d3_refract_k(dir3 d, dir3 n, unit dn, real eta, dir3 *out)
 {
-    int64_t cosi = -fx_round_shift((int64_t)d.x * n.x + (int64_t)d.y * n.y + (int64_t)d.z * n.z,
-                                   FX_UF);               /* Q.F */
+    int32_t cosi = -dn;                                  /* Q.F, |cosi| <= 1 + 2^-28 */
     int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF); /* Q.F, at most 9 * 2^F */
-    int64_t sin2 = U_ONE - ((cosi * cosi) >> FX_UF);     /* Q.F in [0, 1] */
-    const int pre = FX_UF == 30 ? 2 : 0;                 /* keeps the product below 2^62 */
+    int32_t sin2 = U_ONE - (int32_t)(((int64_t)cosi * cosi) >> FX_UF); /* Q.F in [0, 1] */
+    const int pre = FX_UF == 30 ? 2 : 0; /* keeps the product below 2^62 */
     int64_t k = U_ONE - ((eta2 * (sin2 >> pre)) >> (FX_UF - pre));
     if (k < 0)
         return 0;
     int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);  /* Q.F */
     int64_t m = (((int64_t)eta * cosi) >> 16) - cost; /* Q.F, |m| < 2^(F + 3) */
-    int64_t e = (int64_t)eta * (1 << (FX_UF - 16));   /* eta in Q.F */
-    int64_t x = e * d.x + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
-    int64_t y = e * d.y + m * n.y;
-    int64_t z = e * d.z + m * n.z;
+    const int64_t e = 1 << (FX_UF - 16);              /* eta d.x in Q.2F */
+    int64_t x = (int64_t)eta * d.x * e + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
+    int64_t y = (int64_t)eta * d.y * e + m * n.y;
+    int64_t z = (int64_t)eta * d.z * e + m * n.z;
     *out = fx_renorm(x, y, z);
     return 1;
+}
+
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    return d3_refract_k(d, n, d3_dot(d, n), eta, out);
 }
 
 /* ---- in-scene variants, for the sphere test: no saturation test. Objects lie within

@@ -70,6 +70,8 @@ static inline real r_shr(real a, int n)
 static inline real r_mul_in(real a, real b) { return r_mul(a, b); }
 static inline real r_add_in(real a, real b) { return r_add(a, b); }
 static inline real r_neg_in(real a) { return r_neg(a); }
+/* r_mul_in of two colour values or weights (the fixed build's r_mul_c): the same. */
+static inline real r_mul_c(real a, real b) { return r_mul_in(a, b); }
 
 static inline real r_mul_sign(real v, int g) { return g > 0 ? v : (g < 0 ? -v : 0.0f); }
 
@@ -163,6 +165,9 @@ static inline unit u_neg_in(unit a) { return u_neg(a); }
 
 static inline unit u_add(unit a, unit b) { return fl_chk(a + b); }
 
+/* u_add inside a proven bound (the fixed build's u_add_in): the same. */
+static inline unit u_add_in(unit a, unit b) { return u_add(a, b); }
+
 static inline unit u_muli(unit a, int32_t i) { return fl_chk(a * (unit)i); }
 
 static inline unit u_from_real(real a) { return a; }
@@ -207,7 +212,24 @@ static inline wide w_sub(wide a, wide b) { return a - b; }
 
 static inline wide w_len2(vec3 a) { return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z); }
 
+/* A sphere's quick rejection of rays (the fixed build's r_cull): k itself, 0 for none; it
+ * rejects when c . d >= 0 or (c . d)^2 < k. */
+static inline rcull r_cull(wide k) { return k > 0 ? k : 0; }
+
+static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) < c; }
+
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
+
+/* The sphere test's last step for a shadow segment (the fixed build forms it without the
+ * square root): the near hit tca - thc if positive, else tca + thc, in (0, tmax)? */
+static inline int r_sphere_span(wide a, real tca, real tmax)
+{
+    real thc = r_sqrt_w(a);
+    real hit = r_sub(tca, thc);
+    if (hit <= 0)
+        hit = r_add(tca, thc);
+    return hit > 0 && hit < tmax;
+}
 
 static inline real r_hypot(real a, real b) { return fl_chk(sqrtf(a * a + b * b)); }
 
@@ -266,21 +288,30 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
     return fl_norm(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x, len);
 }
 
-static inline dir3 d3_reflect(dir3 d, dir3 n)
+/* d3_reflect and d3_refract given dn = d3_dot(d, n) (the fixed build's d3_reflect_k,
+ * d3_refract_k). */
+static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    float k = 2.0f * d3_dot(d, n);
+    float k = 2.0f * dn;
     return fl_norm(d.x - k * n.x, d.y - k * n.y, d.z - k * n.z, 0);
 }
 
-static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot(d, n)); }
+
+static inline int d3_refract_k(dir3 d, dir3 n, unit dn, real eta, dir3 *out)
 {
-    float cosi = -d3_dot(d, n);
+    float cosi = -dn;
     float k = 1.0f - eta * eta * (1.0f - cosi * cosi);
     if (k < 0.0f)
         return 0;
     float m = eta * cosi - sqrtf(k);
     *out = fl_norm(eta * d.x + m * n.x, eta * d.y + m * n.y, eta * d.z + m * n.z, 0);
     return 1;
+}
+
+static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
+{
+    return d3_refract_k(d, n, d3_dot(d, n), eta, out);
 }
 
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }

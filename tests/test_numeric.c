@@ -1591,6 +1591,67 @@ static void test_reflect_refract(void **state)
     checks_done();
 }
 
+#if REAL_FIXED
+/* The shadow test's square-root-free steps (r_sphere_span, r_sqrt_w_below) and the shadow cull's
+ * one bound (r_cull): the same answers as the forms they replace, at random and at every
+ * rounding edge of the square root (a = t^2 - t and t^2 + t, and one off). */
+static void test_sphere_span(void **state)
+{
+    (void)state;
+    int agree = 0;
+    for (int k = 0; k < 400000; k++) {
+        int64_t t = (int64_t)(rng() % ((uint64_t)2048 * 65536 + 1)); /* a root up to r = 2048 */
+        static const int64_t off[] = {0, 1, -1};
+        int64_t a = k % 4 == 0 ? (int64_t)(rng() % (((uint64_t)1 << 54) + 1))
+                               : t * t + (k % 2 ? t : -t) + off[k % 3];
+        if (a < 0)
+            a = 0;
+        if (a > ((int64_t)1 << 54))
+            a = (int64_t)1 << 54;
+        real thc = r_sqrt_w(a);
+        /* tca and tmax at random, or where one of the compared values meets thc */
+        int64_t lim = (int64_t)30572 * 65536;
+        real tca = (real)((int64_t)(rng() % (uint64_t)(2 * lim + 1)) - lim);
+        real tmax = (real)(rng() % ((uint64_t)30573 * 65536 + 1));
+        switch (k % 5) {
+        case 1: tca = thc + (real)(rng() % 3) - 1; break;              /* thc ~ tca */
+        case 2: tca = -thc + (real)(rng() % 3) - 1; break;             /* thc ~ -tca */
+        case 3: tmax = r_add(tca, thc) + (real)(rng() % 3) - 1; break; /* far ~ tmax */
+        case 4: tmax = r_sub(tca, thc) + (real)(rng() % 3) - 1; break; /* near ~ tmax */
+        default: break;
+        }
+        if (tmax < 0)
+            tmax = 0;
+        real hit = r_sub(tca, thc);
+        if (hit <= 0)
+            hit = r_add(tca, thc);
+        int want = hit > 0 && hit < tmax;
+        if (r_sphere_span(a, tca, tmax) != want)
+            fail_msg("r_sphere_span(%lld, %d, %d) = %d, the square root gives %d", (long long)a,
+                     tca, tmax, !want, want);
+        int64_t lt = (int64_t)(rng() % ((uint64_t)1 << 30)) - ((int64_t)1 << 29);
+        if (k % 3 == 0)
+            lt = thc + (int64_t)(rng() % 3) - 1;
+        if (r_sqrt_w_below(a, lt) != (thc < lt))
+            fail_msg("r_sqrt_w_below(%lld, %lld) wrong (root %d)", (long long)a, (long long)lt,
+                     thc);
+        /* r_cull: "cd >= 0 or cd^2 < kc" for kc > 0 */
+        wide kc = (wide)(rng() % ((uint64_t)1 << 60)) + 1;
+        if (k % 2)
+            kc = t * t + off[k % 3] + 1;
+        real cd = k % 2 ? -(real)t + (real)(rng() % 3) - 1
+                        : (real)((int64_t)(rng() % ((uint64_t)1 << 32)) - ((int64_t)1 << 31) + 1);
+        if (r_cull_rejects(cd, r_cull(kc)) != (cd >= 0 || w_sq(cd) < kc))
+            fail_msg("r_cull(%lld) rejects %d wrongly", (long long)kc, cd);
+        agree++;
+    }
+    print_message("sphere span: %d cases agree with the square root, r_cull with (c.d)^2 < k\n",
+                  agree);
+    assert_int_equal(r_cull(0), 0);
+    assert_int_equal(r_cull(-5), 0);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1607,6 +1668,7 @@ int main(void)
         cmocka_unit_test_setup(test_wide, reset_checks),
 #if REAL_FIXED
         cmocka_unit_test_setup(test_fixed_internals, reset_checks),
+        cmocka_unit_test_setup(test_sphere_span, reset_checks),
 #endif
         cmocka_unit_test_setup(test_vectors, reset_checks),
         cmocka_unit_test_setup(test_primary_rays, reset_checks),

@@ -268,8 +268,8 @@ static void test_shadow_cull(void **state)
                      want, i, r, rq);
         hits += want;
         real cd = v3_dot_d_in(v3_sub_in(o->center, s.lights[0].pos), l);
-        wide kc = s.shadow_cull[0][0];
-        if (kc > 0 && (cd >= 0 || w_sq(cd) < kc)) {
+        rcull kc = s.shadow_cull[0][0];
+        if (kc != 0 && r_cull_rejects(cd, kc)) {
             culled++;
             if (rq - r < 0.012 + r * 0.002)
                 near_culled++;

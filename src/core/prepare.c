@@ -221,8 +221,9 @@ static void scene_bound(rt_scene *s)
     s->bound_center = c;
     s->bound_radius = radius;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
-        s->bound_shadow_cull[l] =
-            l < s->nlights ? scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0) : 0;
+        s->bound_shadow_cull[l] = l < s->nlights
+            ? r_cull(scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0))
+            : 0;
 }
 
 /* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
@@ -262,6 +263,7 @@ void rt_scene_prepare(rt_scene *s)
         rt_material *m = &s->materials[i];
         m->ior_inv = r_div(R_ONE, m->ior);
         m->spec_zero = m->specular > 0 ? scene_spec_zero(m->shininess) : 0;
+        m->ambient_term = c3_scale_p(c3_mul_p(m->diffuse, s->ambient), m->ambient);
     }
     s->near_lights = 0;
     for (int l = 0; l < s->nlights; l++)
@@ -270,7 +272,7 @@ void rt_scene_prepare(rt_scene *s)
             if (scene_light_near(o, s->lights[l].pos))
                 s->near_lights |= 1u << l;
             s->shadow_cull[l][i] = o->kind == RT_SPHERE
-                ? scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0)
+                ? r_cull(scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0))
                 : 0;
         }
     s->eye_at = s->camera.eye;

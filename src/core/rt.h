@@ -49,14 +49,15 @@ typedef struct rt_texture {
 typedef struct rt_material {
     rt_color diffuse; /* r_d: diffuse colour (unless textured) */
     rt_texture tex;
-    real ambient;       /* r_a: share of the ambient light reflected */
-    real specular;      /* r_s in [0, 1] */
-    uint16_t shininess; /* h >= 1: highlight exponent */
-    real reflect;       /* weight of the mirror ray, [0, 1] */
-    real transmit;      /* weight of the refracted ray, [0, 1] */
-    real ior;           /* index of refraction (inside / outside), in [1, 3] */
-    real ior_inv;       /* 1 / ior, kept so that no ray divides */
-    unit spec_zero;     /* u_pow(v, shininess) is exactly 0 for every v <= this */
+    real ambient;          /* r_a: share of the ambient light reflected */
+    real specular;         /* r_s in [0, 1] */
+    uint16_t shininess;    /* h >= 1: highlight exponent */
+    real reflect;          /* weight of the mirror ray, [0, 1] */
+    real transmit;         /* weight of the refracted ray, [0, 1] */
+    real ior;              /* index of refraction (inside / outside), in [1, 3] */
+    real ior_inv;          /* 1 / ior, kept so that no ray divides */
+    unit spec_zero;        /* u_pow(v, shininess) is exactly 0 for every v <= this */
+    rt_color ambient_term; /* diffuse x scene ambient x ambient, as trace_ray forms it */
 } rt_material;
 
 enum rt_shape_kind { RT_SPHERE, RT_PLANE, RT_SHAPE_COUNT };
@@ -120,9 +121,10 @@ typedef struct rt_scene {
     uint32_t near_lights;              /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
     /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
-     * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 and
-     * shadow_cull[l][i] > 0, or (c . d)^2 < shadow_cull[l][i] (rt_scene_prepare). */
-    wide shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
+     * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 or
+     * (c . d)^2 < k, k > 0 (rt_scene_prepare), i.e. when r_cull_rejects(c . d,
+     * shadow_cull[l][i]) for a non-zero entry (the test as the numeric layer prepares it). */
+    rcull shadow_cull[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
     /* Per sphere, for rays from the point eye_at (the camera's eye when prepared): eye_l =
      * centre - eye_at, and the same rejection as shadow_cull (eye_cull > 0 and tca <= 0 or
      * tca^2 < eye_cull: a miss). */
@@ -142,7 +144,7 @@ typedef struct rt_scene {
     uint32_t bound_set;
     vec3 bound_center;
     real bound_radius;
-    wide bound_shadow_cull[RT_MAX_LIGHTS];
+    rcull bound_shadow_cull[RT_MAX_LIGHTS];
 } rt_scene;
 
 /* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest

@@ -40,7 +40,7 @@ SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tm
 
 static dir3 sphere_normal(const rt_object *o, vec3 p)
 {
-    return d3_norm_near(v3_sub(p, o->center), o->inv_radius); /* |p - c| is about r */
+    return d3_norm_near(v3_sub_in(p, o->center), o->inv_radius); /* |p - c| is about r */
 }
 
 /* The plane test up to its division, given num = offset - org . normal, the origin's signed
@@ -96,13 +96,8 @@ const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
     [RT_PLANE] = {plane_intersect, plane_normal},
 };
 
-/* Both loops below call the shape tests directly rather than through rt_shapes: the compiler
+/* The loops below call the shape tests directly rather than through rt_shapes: the compiler
  * then inlines them, which saves the indirect call and the passing of the ray per object. */
-SHAPES_INLINE int shapes_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
-{
-    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
-                                : plane_intersect(o, org, d, tmax, t);
-}
 
 /* The plane test out of line, for the loops over objects: planes are few, and the spheres'
  * loop then keeps the ray in registers. */
@@ -187,29 +182,45 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
     return best;
 }
 
+/* sphere_intersect's answer for a shadow segment, whose hit point is not needed: the same
+ * steps up to the discriminant, then r_sphere_span decides where the hit would lie (the fixed
+ * build without the square root). */
+SHAPES_INLINE int sphere_blocks(const rt_object *o, vec3 org, dir3 d, real tmax)
+{
+    vec3 l = v3_sub_in(o->center, org);
+    real tca = v3_dot_d_in(l, d);
+    if (tca < 0 && w_len2(l) > o->radius2)
+        return 0;
+    if (tca > r_add(tmax, o->radius))
+        return 0;
+    wide d2 = w_len2(v3_sub_in(l, d3_scale_in(d, tca)));
+    if (d2 > o->radius2)
+        return 0;
+    return r_sphere_span(w_sub(o->radius2, d2), tca, tmax);
+}
+
 /* The full test of a shadow-ray candidate, kept out of line: the loop below then holds the ray
  * and the light in registers instead of sharing them with the intersection code (RT_OUT_OF_LINE). */
 static RT_OUT_OF_LINE int shapes_blocks(const rt_object *o, const vec3 *org, const dir3 *d,
                                         real dist)
 {
     real hit;
-    return shapes_intersect(o, *org, *d, dist, &hit);
+    return o->kind == RT_SPHERE ? sphere_blocks(o, *org, *d, dist)
+                                : plane_intersect(o, *org, *d, dist, &hit);
 }
 
 int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
                 real dist)
 {
     const dotpart lpd = v3_dot_part(s->lights[light].pos, d);
-    const wide *cull = s->shadow_cull[light];
+    const rcull *cull = s->shadow_cull[light];
     uint32_t tested = 0;
     int blocked = 0;
     /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
-    wide kb = s->bound_shadow_cull[light];
-    if (kb > 0 && (occ & s->bound_set)) {
-        real cd = v3_dot_d_from(s->bound_center, d, lpd);
-        if (cd >= 0 || w_sq(cd) < kb)
-            occ &= ~s->bound_set;
-    }
+    rcull kb = s->bound_shadow_cull[light];
+    if (kb != 0 && (occ & s->bound_set) &&
+        r_cull_rejects(v3_dot_d_from(s->bound_center, d, lpd), kb))
+        occ &= ~s->bound_set;
     /* Set bits in increasing order (the objects' order); counted once, after the loop. */
     for (; occ; occ &= occ - 1) {
         int i = __builtin_ctz(occ);
@@ -218,12 +229,9 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 o
         /* The ray from the light back along -d passes too far from the sphere for this
          * segment to reach it (rt_scene_prepare): the full test would miss. A plane's entry
          * is 0. */
-        wide k = cull[i];
-        if (k > 0) {
-            real cd = v3_dot_d_from(o->center, d, lpd); /* (centre - light) . d */
-            if (cd >= 0 || w_sq(cd) < k)
-                continue;
-        }
+        rcull k = cull[i];
+        if (k != 0 && r_cull_rejects(v3_dot_d_from(o->center, d, lpd), k)) /* (c - light) . d */
+            continue;
         if (shapes_blocks(o, &org, &d, dist)) {
             blocked = 1;
             break;

@@ -93,72 +93,115 @@ typedef struct trace_hit {
  * less in registers. */
 static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i, rt_color *col)
 {
+    /* The hit's fields are read where they are used (not copied up front): most lights are
+     * behind the surface or shadowed and need only p and n. */
     const rt_scene *s = c->scene;
-    const rt_material *m = h->m;
-    const vec3 p = h->p, p_out = h->p_out;
-    const dir3 n = h->n, d = h->d;
-    const unit dn = h->dn;
-    const rt_color base = h->base;
-    const int id = h->id, inside = h->inside;
     const rt_light *li = &s->lights[i];
+    const dir3 n = h->n;
     /* A light behind the surface, or exactly on the point (no direction: it lights the
      * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
      * cost of a normalisation. */
-    vec3 to_light = v3_sub(li->pos, p);
-    real dist = 0;
-    dir3 l = {0, 0, 0};
-    if (v3_faces(to_light, n))
-        l = d3_norm(to_light, &dist);
+    vec3 to_light = v3_sub_in(li->pos, h->p);
+    if (!v3_faces(to_light, n))
+        return 0;
+    real dist;
+    dir3 l = d3_norm(to_light, &dist);
     unit ndl = d3_dot(n, l);
-    uint8_t state = 0;
-    if (ndl > 0) { /* the light is in front of the surface */
-        /* A convex surface never shadows its own lit side; seen from inside (glass) it
-         * can. Lights nothing can occlude cast no shadow ray at all. */
-        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-        if (!inside && !s->forced)
-            occ &= ~((uint32_t)1 << id);
-        int blocked = 0;
-        if (occ) {
-            /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
-             * light, behind a surface that passes closer to the light than that (a light
-             * just above a floor seen from the underside of a ball: a false shadow). For
-             * such lights it is aimed from p_out itself and ends at the light. */
-            real sdist = dist;
-            dir3 sl = l;
-            if (s->near_lights & (1u << i)) {
-                vec3 to_light_out = v3_sub(li->pos, p_out);
-                sdist = 0;
-                if (!v3_is_zero(to_light_out))
-                    sl = d3_norm(to_light_out, &sdist);
-            }
-            /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
-             * off the surface: a surface through the light itself (a light in a corner of
-             * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
-            c->stats->rays_shadow++;
-            if (sdist > R_EPS_OFFSET)
-                blocked = rt_occluded(s, c->stats, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET));
+    if (ndl <= 0)
+        return 0; /* the light is not in front of the surface */
+    /* A convex surface never shadows its own lit side; seen from inside (glass) it
+     * can. Lights nothing can occlude cast no shadow ray at all. */
+    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+    if (!h->inside && !s->forced)
+        occ &= ~((uint32_t)1 << h->id);
+    if (occ) {
+        /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+         * light, behind a surface that passes closer to the light than that (a light
+         * just above a floor seen from the underside of a ball: a false shadow). For
+         * such lights it is aimed from p_out itself and ends at the light. */
+        real sdist = dist;
+        dir3 sl = l;
+        if (s->near_lights & (1u << i)) {
+            vec3 to_light_out = v3_sub_in(li->pos, h->p_out);
+            sdist = 0;
+            if (!v3_is_zero(to_light_out))
+                sl = d3_norm(to_light_out, &sdist);
         }
-        if (!blocked) {
-            state = 1;
-            *col = c3_madd(*col, c3_mul(li->color, base), u_to_real(ndl)); /* Lambert */
-            if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
-                /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
-                /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no
-                 * renormalisation. Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light
-                 * and eye straight above the point), just outside Q2.30, while every
-                 * partial sum is within [-1, 1] (docs/numerics.md). */
-                unit ndn = u_neg(u_mul(ndl, dn));
-                unit vr = u_add(u_add(d3_dot(d, l), ndn), ndn);
-                if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
-                    real spec = r_mul_in(m->specular, u_to_real(u_pow(vr, m->shininess)));
-                    *col = c3_madd(*col, li->color, spec);
-                    if (spec > RT_HIGHLIGHT_MIN)
-                        state = 2;
-                }
-            }
+        /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+         * off the surface: a surface through the light itself (a light in a corner of
+         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+        c->stats->rays_shadow++;
+        if (sdist > R_EPS_OFFSET &&
+            rt_occluded(s, c->stats, i, occ, h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            return 0;
+    }
+    const rt_material *m = h->m;
+    rt_color acc = c3_madd_p(*col, c3_mul_p(li->color, h->base), u_to_real(ndl)); /* Lambert */
+    uint8_t state = 1;
+    if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
+        /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
+        /* v . r with r = 2 (n.l) n - l: -(d.r) = d.l - 2 (n.l)(d.n), no renormalisation.
+         * Subtracted in two steps: 2 (n.l)(d.n) reaches -2 (light and eye straight above
+         * the point), just outside Q2.30, while every partial sum is within [-1, 1]
+         * (docs/numerics.md): the in-range forms (u_mul_in, u_add_in). */
+        unit ndn = u_neg(u_mul_in(ndl, h->dn));
+        unit vr = u_add_in(u_add_in(d3_dot(h->d, l), ndn), ndn);
+        if (vr > m->spec_zero) { /* else (v . r)^h is 0: no highlight */
+            real spec = r_mul_c(m->specular, u_to_real(u_pow(vr, m->shininess)));
+            acc = c3_madd_p(acc, li->color, spec);
+            if (spec > RT_HIGHLIGHT_MIN)
+                state = 2;
         }
     }
+    *col = acc;
     return state;
+}
+
+static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
+                          real travelled, int from);
+
+/* The reflected and refracted rays of hit h (trace_ray's, at recursion depth `depth` > 0 and
+ * weight `weight`), added to col. Out of line on ARM (RT_OUT_OF_LINE): trace_ray's own frame
+ * then keeps less in registers. */
+static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h, int depth,
+                                               real weight, int level, real travelled, rt_color col)
+{
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    const dir3 d = h->d, n = h->n;
+    const int inside = h->inside;
+    real kr = m->reflect;
+    /* d . n for the facing normal: dn itself, unless n was turned (rounding -(d . n) and
+     * negating the rounded value can differ by a step) */
+    unit dk = inside ? d3_dot(d, n) : h->dn;
+    if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
+        dir3 rd;
+        real eta = inside ? m->ior : m->ior_inv;
+        if (d3_refract_k(d, n, dk, eta, &rd)) {
+            real wt = r_mul_c(weight, m->transmit);
+            if (wt >= c->min_contrib) { /* adaptive recursion control */
+                c->stats->rays_refract++;
+                vec3 p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
+                rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
+                col = c3_madd_p(col, tc, m->transmit);
+            }
+        } else {
+            kr = r_add(kr, m->transmit); /* total internal reflection */
+        }
+    }
+    real wr = r_mul_c(weight, kr);
+    if (kr > 0 && wr >= c->min_contrib) {
+        c->stats->rays_reflect++;
+        /* Mirrored off a plane's front, it cannot meet the plane again: it starts
+         * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
+         * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
+         * be off by more than that. Every object is tested when effects are forced.) */
+        int self = !inside && !s->forced && s->objects[h->id].kind == RT_PLANE ? h->id : -1;
+        rt_color rc = trace_ray(c, h->p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
+                                travelled, self);
+        col = c3_madd_p(col, rc, kr);
+    }
+    return col;
 }
 
 /* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel, `travelled`
@@ -172,12 +215,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         : TRACE_FIRST(c)                   ? trace_first(c, org, d, &t)
                                            : rt_nearest_primary(s, d, c->primary_cand, &t);
     if (id < 0) {
-        trace_record(c, RT_NO_OBJECT, level, c3_scale(s->background, weight));
+        trace_record(c, RT_NO_OBJECT, level, c3_scale_p(s->background, weight));
         return s->background;
     }
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
-    vec3 p = v3_along_in(org, d, t);
+    /* The hit as trace_light sees it, formed in place. */
+    trace_hit h;
+    const vec3 p = h.p = v3_along_in(org, d, t);
     if (TRACE_PROBE(c) && c->probe == 1)
         return trace_probe_hit(c, m, p, id);
     dir3 n = rt_shapes[o->kind].normal(o, p);
@@ -188,8 +233,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         dn = u_neg(dn);
         inside = 1;
     }
+    h.n = n;
+    h.d = d;
+    h.dn = dn;
+    h.m = m;
+    h.id = id;
+    h.inside = inside;
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
+    h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
      * primary hit. */
@@ -203,8 +254,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
-    rt_color col = c3_scale(c3_mul(base, s->ambient), m->ambient);
-    trace_hit h = {p, p_out, n, d, dn, base, m, id, inside};
+    /* the ambient term; for the material's own diffuse colour (untextured, or a checker's
+     * first colour) the frame's (rt_scene_prepare), the same value */
+    rt_color col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
+        ? m->ambient_term
+        : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
+    h.base = base;
     int nlights = TRACE_PROBE(c) && (level > 0 || c->probe == 3) ? 0 : s->nlights;
     unsigned lights = 0;
     for (int i = 0; i < nlights; i++)
@@ -212,43 +267,18 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     if (level == 0)
         c->sample->lights = (uint8_t)lights;
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
-    trace_record(c, id, level, weight == R_ONE ? col : c3_scale(col, weight));
+    trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within
      * R_SCENE_MAX + R_T_MAX of the centre: the bound the sphere test's arithmetic relies on
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
-     * what it mirrors is below a pixel. */
-    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) && v3_within(p, R_SCENE_MAX)) {
-        real kr = m->reflect;
-        if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
-            dir3 rd;
-            real eta = inside ? m->ior : m->ior_inv;
-            if (d3_refract(d, n, eta, &rd)) {
-                real wt = r_mul_in(weight, m->transmit);
-                if (wt >= c->min_contrib) { /* adaptive recursion control */
-                    c->stats->rays_refract++;
-                    vec3 p_in = v3_along_in(p, n, r_neg(R_EPS_OFFSET));
-                    rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
-                    col = c3_madd(col, tc, m->transmit);
-                }
-            } else {
-                kr = r_add(kr, m->transmit); /* total internal reflection */
-            }
-        }
-        real wr = r_mul_in(weight, kr);
-        if (kr > 0 && wr >= c->min_contrib) {
-            c->stats->rays_reflect++;
-            /* Mirrored off a plane's front, it cannot meet the plane again: it starts
-             * R_EPS_OFFSET in front of it (far more than the hit point's error) and leaves it.
-             * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
-             * be off by more than that. Every object is tested when effects are forced.) */
-            int self = !inside && !s->forced && o->kind == RT_PLANE ? id : -1;
-            rt_color rc =
-                trace_ray(c, p_out, d3_reflect(d, n), depth - 1, wr, level + 1, travelled, self);
-            col = c3_madd(col, rc, kr);
-        }
-    }
+     * what it mirrors is below a pixel. A material that neither reflects nor transmits casts
+     * neither ray. */
+    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) &&
+        (m->reflect > 0 || (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0)) &&
+        v3_within(p, R_SCENE_MAX))
+        col = trace_secondary(c, &h, depth, weight, level, travelled, col);
     return col;
 }
 
