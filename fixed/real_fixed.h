@@ -450,10 +450,10 @@ static inline ustep u_tan_step(unit s, unit c, int32_t height)
 /* A colour channel as a byte: clamped to [0, 1], scaled to 0..255 and rounded. */
 static inline uint8_t r_to_byte(real c)
 {
-    if (c <= 0)
-        return 0;
-    if (c >= R_ONE)
-        return 255;
+    /* c clamped to [0, R_ONE] first (R_ONE itself gives 255): two conditional moves on ARM
+     * instead of two branches */
+    c = c < 0 ? 0 : c;
+    c = c > R_ONE ? R_ONE : c;
     return (uint8_t)(((uint32_t)c * 255u + 0x8000u) >> 16);
 }
 
