@@ -200,35 +200,36 @@ static dir3 fx_norm_zero(real *len)
     return d;
 }
 
-/* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
- * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then two
- * Newton steps z += z (2^63 - m z) / 2^63 (2^-16, then the 2^-31 the arithmetic holds), each
- * correction formed from e / 2^31 so that the product fits. */
-static inline uint64_t fx_recip63(uint64_t m)
+/* z ~ 2^62 / m for m in [2^31, 2^32), in (2^30, 2^31 + 2^23), within about 2 units, in 32-bit
+ * words (an ARM926 has no 64 x 64-bit product: each one below is a single umull/smull): from
+ * the 1/sqrt table (x = m / 2^30 in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^30 =
+ * 2^62 / m to about 2^-8), then two Newton steps z += z (2^62 - m z) / 2^62 (2^-16, then the
+ * 2^-30 the arithmetic holds), each correction formed from e / 2^30, which fits 32 bits
+ * (|e| < 2^55, then 2^47). */
+static inline uint32_t fx_recip62(uint32_t m)
 {
-    uint64_t y = (uint64_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
-    uint64_t z = (y * y) >> 29;
+    uint32_t y = (uint32_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
+    uint32_t z = (uint32_t)(((uint64_t)y * y) >> 30);
     for (int i = 0; i < 2; i++) {
-        int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
-        z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
+        int64_t e = (int64_t)(((uint64_t)1 << 62) - (uint64_t)m * z); /* no wrap */
+        z = (uint32_t)((int64_t)z + (((int64_t)(int32_t)(e >> 30) * (int64_t)z) >> 32));
     }
     return z;
 }
 
 uint64_t fx_udiv64(uint64_t n, uint32_t m)
 {
-    /* q ~ n z / 2^(63-k) with z ~ 2^63 / (m 2^k), the 94-bit product formed from n's halves
-     * (z is capped at 2^32 so that the low half's product fits); then the exact quotient by
-     * the remainder, or the library's division when the estimate is off by more than a few
-     * units (large quotients, where z's relative error of 2^-30 shows). */
+    /* q ~ n z / 2^(62-k) with z ~ 2^62 / (m 2^k), the 94-bit product formed from n's halves,
+     * each a 32 x 32-bit one, as (n z) / 2^31 (below 2^63) shifted by 31 - k; then the exact
+     * quotient by the remainder, or the library's division when the estimate is off by more
+     * than a few units (large quotients, where z's relative error of 2^-30 shows). */
     int k = __builtin_clz(m);
-    uint64_t z = fx_recip63((uint64_t)m << k);
-    if (z > ((uint64_t)1 << 32))
-        z = (uint64_t)1 << 32;
-    uint64_t nh = n >> 32, nl = n & 0xFFFFFFFFu;
-    uint64_t q = ((nh * z) + ((nl * z) >> 32)) >> (31 - k);
+    uint32_t z = fx_recip62(m << k);
+    uint32_t nh = (uint32_t)(n >> 32), nl = (uint32_t)n;
+    uint64_t q = (((uint64_t)nh * z) * 2 + (((uint64_t)nl * z) >> 31)) >> (31 - k);
     int64_t r = (int64_t)(n - q * m);
-    if (r < -4 * (int64_t)m || r >= 4 * (int64_t)m)
+    /* r in [-4m, 4m) by one unsigned compare (8m < 2^35) */
+    if ((uint64_t)r + 4 * (uint64_t)m >= 8 * (uint64_t)m)
         return n / m;
     while (r < 0) {
         q--;
