@@ -310,6 +310,13 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
         sx = (int32_t)(x * ((int64_t)1 << s));
         sy = (int32_t)(y * ((int64_t)1 << s));
         sz = (int32_t)(z * ((int64_t)1 << s));
+    } else if (s > -32) {
+        /* each result fits 32 bits, so it is the low word of x >> -s: from x's two words,
+         * without a 64-bit shift by a variable (the primary rays' case: s about -29) */
+        int sh = -s;
+        sx = (int32_t)(((uint32_t)x >> sh) | ((uint32_t)((uint64_t)x >> 32) << (32 - sh)));
+        sy = (int32_t)(((uint32_t)y >> sh) | ((uint32_t)((uint64_t)y >> 32) << (32 - sh)));
+        sz = (int32_t)(((uint32_t)z >> sh) | ((uint32_t)((uint64_t)z >> 32) << (32 - sh)));
     } else {
         sx = (int32_t)(x >> -s);
         sy = (int32_t)(y >> -s);
@@ -407,15 +414,45 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 }
 #endif
 
-/* The primary ray's normalisation (d3_ray): fx_norm64 without the length. On 32-bit ARM with
- * everything inlined into it (flatten: about 40 instructions a primary ray fewer under QEMU, for
- * 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
+/* The primary ray through a pixel (d3_ray): f + r*(step*ia) + u*(step*ib), ia and ib the
+ * pixel's offsets from the image centre in half pixels, normalised. Formed in Q.58 when
+ * step*|ia| and step*|ib| are below 8 (any field of view on frames up to 4:1); a wider image
+ * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
+ * so that every term stays below 2^61 and the sums below 2^63. With unit in Q16.16 the offsets
+ * are rounded to Q.16 (below 2^29 on any frame) and the sums are Q.32 (below 2^47). On 32-bit
+ * ARM with fx_norm64 inlined into it (flatten: about 40 instructions a primary ray fewer under
+ * QEMU, for 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
 #if defined(__arm__)
 __attribute__((flatten))
 #endif
-dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z)
+dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia, int32_t ib)
 {
-    return fx_norm64(x, y, z, 0, 0);
+    int64_t x, y, z;
+#if FX_UF == 30
+    int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
+    uint64_t big =
+        (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
+    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
+     * bits and every product is a signed 32x32-bit one (smull, smlal) */
+    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
+    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
+    if (__builtin_expect(sh == 2, 1)) { /* the usual frame: constant shifts */
+        x = (int64_t)f->x * (1 << 28) + (int64_t)r->x * as + (int64_t)u->x * bs;
+        y = (int64_t)f->y * (1 << 28) + (int64_t)r->y * as + (int64_t)u->y * bs;
+        z = (int64_t)f->z * (1 << 28) + (int64_t)r->z * as + (int64_t)u->z * bs;
+    } else {
+        x = (int64_t)f->x * ((int64_t)1 << (30 - sh)) + (int64_t)r->x * as + (int64_t)u->x * bs;
+        y = (int64_t)f->y * ((int64_t)1 << (30 - sh)) + (int64_t)r->y * as + (int64_t)u->y * bs;
+        z = (int64_t)f->z * ((int64_t)1 << (30 - sh)) + (int64_t)r->z * as + (int64_t)u->z * bs;
+    }
+#else
+    int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
+    int32_t b = (int32_t)fx_round_shift((int64_t)step * ib, 14);
+    x = (int64_t)f->x * 65536 + (int64_t)r->x * a + (int64_t)u->x * b;
+    y = (int64_t)f->y * 65536 + (int64_t)r->y * a + (int64_t)u->y * b;
+    z = (int64_t)f->z * 65536 + (int64_t)r->z * a + (int64_t)u->z * b;
+#endif
+    return fx_norm64(x, y, z, 0, 0); /* the direction alone: frac does not matter */
 }
 
 #endif
