@@ -200,35 +200,36 @@ static dir3 fx_norm_zero(real *len)
     return d;
 }
 
-/* z ~ 2^63 / m for m in [2^31, 2^32), within a few units: from the 1/sqrt table (x = m / 2^30
- * in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^29 = 2^63 / m to about 2^-8), then two
- * Newton steps z += z (2^63 - m z) / 2^63 (2^-16, then the 2^-31 the arithmetic holds), each
- * correction formed from e / 2^31 so that the product fits. */
-static inline uint64_t fx_recip63(uint64_t m)
+/* z ~ 2^62 / m for m in [2^31, 2^32), in (2^30, 2^31 + 2^23), within about 2 units, in 32-bit
+ * words (an ARM926 has no 64 x 64-bit product: each one below is a single umull/smull): from
+ * the 1/sqrt table (x = m / 2^30 in [2, 4), y = entry * 2^16 = 2^31 / sqrt(x), so y^2 / 2^30 =
+ * 2^62 / m to about 2^-8), then two Newton steps z += z (2^62 - m z) / 2^62 (2^-16, then the
+ * 2^-30 the arithmetic holds), each correction formed from e / 2^30, which fits 32 bits
+ * (|e| < 2^55, then 2^47). */
+static inline uint32_t fx_recip62(uint32_t m)
 {
-    uint64_t y = (uint64_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
-    uint64_t z = (y * y) >> 29;
+    uint32_t y = (uint32_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
+    uint32_t z = (uint32_t)(((uint64_t)y * y) >> 30);
     for (int i = 0; i < 2; i++) {
-        int64_t e = (int64_t)(((uint64_t)1 << 63) - m * z); /* |e| < 2^56: no wrap */
-        z = (uint64_t)((int64_t)z + (((e >> 31) * (int64_t)z) >> 32));
+        int64_t e = (int64_t)(((uint64_t)1 << 62) - (uint64_t)m * z); /* no wrap */
+        z = (uint32_t)((int64_t)z + (((int64_t)(int32_t)(e >> 30) * (int64_t)z) >> 32));
     }
     return z;
 }
 
 uint64_t fx_udiv64(uint64_t n, uint32_t m)
 {
-    /* q ~ n z / 2^(63-k) with z ~ 2^63 / (m 2^k), the 94-bit product formed from n's halves
-     * (z is capped at 2^32 so that the low half's product fits); then the exact quotient by
-     * the remainder, or the library's division when the estimate is off by more than a few
-     * units (large quotients, where z's relative error of 2^-30 shows). */
+    /* q ~ n z / 2^(62-k) with z ~ 2^62 / (m 2^k), the 94-bit product formed from n's halves,
+     * each a 32 x 32-bit one, as (n z) / 2^31 (below 2^63) shifted by 31 - k; then the exact
+     * quotient by the remainder, or the library's division when the estimate is off by more
+     * than a few units (large quotients, where z's relative error of 2^-30 shows). */
     int k = __builtin_clz(m);
-    uint64_t z = fx_recip63((uint64_t)m << k);
-    if (z > ((uint64_t)1 << 32))
-        z = (uint64_t)1 << 32;
-    uint64_t nh = n >> 32, nl = n & 0xFFFFFFFFu;
-    uint64_t q = ((nh * z) + ((nl * z) >> 32)) >> (31 - k);
+    uint32_t z = fx_recip62(m << k);
+    uint32_t nh = (uint32_t)(n >> 32), nl = (uint32_t)n;
+    uint64_t q = (((uint64_t)nh * z) * 2 + (((uint64_t)nl * z) >> 31)) >> (31 - k);
     int64_t r = (int64_t)(n - q * m);
-    if (r < -4 * (int64_t)m || r >= 4 * (int64_t)m)
+    /* r in [-4m, 4m) by one unsigned compare (8m < 2^35) */
+    if ((uint64_t)r + 4 * (uint64_t)m >= 8 * (uint64_t)m)
         return n / m;
     while (r < 0) {
         q--;
@@ -309,6 +310,13 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
         sx = (int32_t)(x * ((int64_t)1 << s));
         sy = (int32_t)(y * ((int64_t)1 << s));
         sz = (int32_t)(z * ((int64_t)1 << s));
+    } else if (s > -32) {
+        /* each result fits 32 bits, so it is the low word of x >> -s: from x's two words,
+         * without a 64-bit shift by a variable (the primary rays' case: s about -29) */
+        int sh = -s;
+        sx = (int32_t)(((uint32_t)x >> sh) | ((uint32_t)((uint64_t)x >> 32) << (32 - sh)));
+        sy = (int32_t)(((uint32_t)y >> sh) | ((uint32_t)((uint64_t)y >> 32) << (32 - sh)));
+        sz = (int32_t)(((uint32_t)z >> sh) | ((uint32_t)((uint64_t)z >> 32) << (32 - sh)));
     } else {
         sx = (int32_t)(x >> -s);
         sy = (int32_t)(y >> -s);
@@ -406,15 +414,45 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 }
 #endif
 
-/* The primary ray's normalisation (d3_ray): fx_norm64 without the length. On 32-bit ARM with
- * everything inlined into it (flatten: about 40 instructions a primary ray fewer under QEMU, for
- * 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
+/* The primary ray through a pixel (d3_ray): f + r*(step*ia) + u*(step*ib), ia and ib the
+ * pixel's offsets from the image centre in half pixels, normalised. Formed in Q.58 when
+ * step*|ia| and step*|ib| are below 8 (any field of view on frames up to 4:1); a wider image
+ * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
+ * so that every term stays below 2^61 and the sums below 2^63. With unit in Q16.16 the offsets
+ * are rounded to Q.16 (below 2^29 on any frame) and the sums are Q.32 (below 2^47). On 32-bit
+ * ARM with fx_norm64 inlined into it (flatten: about 40 instructions a primary ray fewer under
+ * QEMU, for 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
 #if defined(__arm__)
 __attribute__((flatten))
 #endif
-dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z)
+dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia, int32_t ib)
 {
-    return fx_norm64(x, y, z, 0, 0);
+    int64_t x, y, z;
+#if FX_UF == 30
+    int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
+    uint64_t big =
+        (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
+    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
+     * bits and every product is a signed 32x32-bit one (smull, smlal) */
+    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
+    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
+    if (__builtin_expect(sh == 2, 1)) { /* the usual frame: constant shifts */
+        x = (int64_t)f->x * (1 << 28) + (int64_t)r->x * as + (int64_t)u->x * bs;
+        y = (int64_t)f->y * (1 << 28) + (int64_t)r->y * as + (int64_t)u->y * bs;
+        z = (int64_t)f->z * (1 << 28) + (int64_t)r->z * as + (int64_t)u->z * bs;
+    } else {
+        x = (int64_t)f->x * ((int64_t)1 << (30 - sh)) + (int64_t)r->x * as + (int64_t)u->x * bs;
+        y = (int64_t)f->y * ((int64_t)1 << (30 - sh)) + (int64_t)r->y * as + (int64_t)u->y * bs;
+        z = (int64_t)f->z * ((int64_t)1 << (30 - sh)) + (int64_t)r->z * as + (int64_t)u->z * bs;
+    }
+#else
+    int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
+    int32_t b = (int32_t)fx_round_shift((int64_t)step * ib, 14);
+    x = (int64_t)f->x * 65536 + (int64_t)r->x * a + (int64_t)u->x * b;
+    y = (int64_t)f->y * 65536 + (int64_t)r->y * a + (int64_t)u->y * b;
+    z = (int64_t)f->z * 65536 + (int64_t)r->z * a + (int64_t)u->z * b;
+#endif
+    return fx_norm64(x, y, z, 0, 0); /* the direction alone: frac does not matter */
 }
 
 #endif

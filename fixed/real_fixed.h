@@ -58,9 +58,10 @@ uint32_t fx_isqrt64(uint64_t n);
  * frac = 16 and get a Q16.16 length (may be NULL). A zero vector gives (0,0,0), length 0,
  * and counts FX_EV_DOMAIN. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
-/* fx_norm64(x, y, z, any frac, NULL): the unit vector alone, its code inlined for the primary
- * rays (d3_ray). */
-dir3 fx_norm64_dir(int64_t x, int64_t y, int64_t z);
+/* d3_ray(*f, *r, *u, step, ia, ib) (below): the primary ray's direction, formed and normalised
+ * in one function (the view's vectors read in place, nothing passed on the stack but the three
+ * numbers). */
+dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia, int32_t ib);
 /* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
  * arithmetic from the start. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
@@ -450,10 +451,10 @@ static inline ustep u_tan_step(unit s, unit c, int32_t height)
 /* A colour channel as a byte: clamped to [0, 1], scaled to 0..255 and rounded. */
 static inline uint8_t r_to_byte(real c)
 {
-    if (c <= 0)
-        return 0;
-    if (c >= R_ONE)
-        return 255;
+    /* c clamped to [0, R_ONE] first (R_ONE itself gives 255): two conditional moves on ARM
+     * instead of two branches */
+    c = c < 0 ? 0 : c;
+    c = c > R_ONE ? R_ONE : c;
     return (uint8_t)(((uint32_t)c * 255u + 0x8000u) >> 16);
 }
 
@@ -572,37 +573,18 @@ static inline vec3 d3_scale(dir3 d, real s)
 static inline dir3 d3_norm(vec3 v, real *len) { return FX_NORM_REALS(v.x, v.y, v.z, len); }
 
 /* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
- * ia and ib are the pixel's offsets from the image centre in half pixels. Formed in Q.58 when
- * step*|ia| and step*|ib| are below 8 (any field of view on frames up to 4:1); a wider image
- * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
- * so that every term stays below 2^61 and the sums below 2^63. With unit in Q16.16 the offsets
- * are rounded to Q.16 (below 2^29 on any frame) and the sums are Q.32 (below 2^47). */
+ * ia and ib are the pixel's offsets from the image centre in half pixels (fx_ray_dir, fx.c,
+ * tells how it is formed). */
 static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_t ib)
 {
-#if FX_UF == 30
-    int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
-    uint64_t big =
-        (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
-    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
-     * bits and every product is a signed 32x32-bit one (smull, smlal) */
-    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
-    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
-    if (__builtin_expect(sh == 2, 1)) /* the usual frame: constant shifts */
-        return fx_norm64_dir((int64_t)f.x * (1 << 28) + (int64_t)r.x * as + (int64_t)u.x * bs,
-                             (int64_t)f.y * (1 << 28) + (int64_t)r.y * as + (int64_t)u.y * bs,
-                             (int64_t)f.z * (1 << 28) + (int64_t)r.z * as + (int64_t)u.z * bs);
-    int64_t x = (int64_t)f.x * ((int64_t)1 << (30 - sh)) + (int64_t)r.x * as + (int64_t)u.x * bs;
-    int64_t y = (int64_t)f.y * ((int64_t)1 << (30 - sh)) + (int64_t)r.y * as + (int64_t)u.y * bs;
-    int64_t z = (int64_t)f.z * ((int64_t)1 << (30 - sh)) + (int64_t)r.z * as + (int64_t)u.z * bs;
-    return fx_norm64(x, y, z, 60 - sh, 0);
-#else
-    int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
-    int32_t b = (int32_t)fx_round_shift((int64_t)step * ib, 14);
-    int64_t x = (int64_t)f.x * 65536 + (int64_t)r.x * a + (int64_t)u.x * b;
-    int64_t y = (int64_t)f.y * 65536 + (int64_t)r.y * a + (int64_t)u.y * b;
-    int64_t z = (int64_t)f.z * 65536 + (int64_t)r.z * a + (int64_t)u.z * b;
-    return fx_norm64(x, y, z, 32, 0);
-#endif
+    return fx_ray_dir(&f, &r, &u, step, ia, ib);
+}
+
+/* d3_ray of the vectors in place: what the camera calls per pixel. */
+static inline dir3 d3_ray_at(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia,
+                             int32_t ib)
+{
+    return fx_ray_dir(f, r, u, step, ia, ib);
 }
 
 /* Unit vector along a x b; *len (may be NULL) gets |a x b| = sin of the angle. */

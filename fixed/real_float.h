@@ -283,6 +283,13 @@ static inline dir3 d3_ray(dir3 f, dir3 r, dir3 u, ustep step, int32_t ia, int32_
     return fl_norm(f.x + r.x * a + u.x * b, f.y + r.y * a + u.y * b, f.z + r.z * a + u.z * b, 0);
 }
 
+/* d3_ray of the vectors in place (the fixed build's form for the camera). */
+static inline dir3 d3_ray_at(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia,
+                             int32_t ib)
+{
+    return d3_ray(*f, *r, *u, step, ia, ib);
+}
+
 static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
 {
     return fl_norm(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x, len);

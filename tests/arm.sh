@@ -59,13 +59,13 @@ if PROFILE_TOP=200 platform/arm/profile.sh fixed 425 875 >"$T/profile.txt" 2>&1;
   board=$(sed -n 's/^frame=\(425\|875\) instructions=\([0-9]*\)$/\2/p' "$T/fixed-1.log" | awk '{ s += $1 } END { print s + 0 }')
   share() { awk -v f="$1" '/^by containing function/ { on = 1; next } /^$/ { on = 0 } on && $3 == f { print $2 }' "$T/profile.txt"; }
   occ=$(share rt_occluded)
-  norm=$(share fx_norm64_dir)
+  norm=$(share fx_ray_dir)
   if [ -n "$inside" ] && [ "$board" -gt 0 ] && [ $((inside > board ? inside - board : board - inside)) -le 400 ] &&
      [ -n "$occ" ] && [ "$occ" != "0.00%" ] && [ -n "$norm" ] && [ "$norm" != "0.00%" ] &&
      cmp -s "$(ppm fixed 425)" "$T/host-fixed-425.ppm" && cmp -s "$(ppm fixed 875)" "$T/host-fixed-875.ppm"; then
-    pass "arm: qemu-profile frames 425 875: $inside instructions inside the frames, the board's icount $board; rt_occluded $occ, fx_norm64_dir $norm; frames unchanged"
+    pass "arm: qemu-profile frames 425 875: $inside instructions inside the frames, the board's icount $board; rt_occluded $occ, fx_ray_dir $norm; frames unchanged"
   else
-    fail "arm: qemu-profile frames 425 875: plugin $inside vs board $board instructions, rt_occluded '$occ', fx_norm64_dir '$norm' (or the frames changed): $(tail -3 "$T/profile.txt" | tr '\n' ' ')"
+    fail "arm: qemu-profile frames 425 875: plugin $inside vs board $board instructions, rt_occluded '$occ', fx_ray_dir '$norm' (or the frames changed): $(tail -3 "$T/profile.txt" | tr '\n' ' ')"
   fi
 else
   fail "arm: qemu-profile frames 425 875: $(tail -3 "$T/profile.txt" | tr '\n' ' ')"

@@ -24,19 +24,22 @@ typedef struct trace_ctx {
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
 #define TRACE_PROBE(c) (RT_COMPILED_PROBE && (c)->probe)
 
-static void trace_record(trace_ctx *c, int object, int level, rt_color contrib)
+/* Inlined into its three callers: the colour stays in registers (no copy through the stack)
+ * and the count is read once. */
+static inline __attribute__((always_inline)) void trace_record(trace_ctx *c, int object, int level,
+                                                               rt_color contrib)
 {
     rt_sample *sm = c->sample;
-    if (sm->nhits < RT_SAMPLE_MAX_HITS) {
-        rt_hit_rec *h = &sm->hits[sm->nhits];
+    unsigned n = sm->nhits;
+    if (n < RT_SAMPLE_MAX_HITS) {
+        rt_hit_rec *h = &sm->hits[n];
         h->object = (uint8_t)object;
         h->level = (uint8_t)level;
         h->contrib[0] = r_to_byte(contrib.x);
         h->contrib[1] = r_to_byte(contrib.y);
         h->contrib[2] = r_to_byte(contrib.z);
     }
-    if (sm->nhits < 255)
-        sm->nhits++;
+    sm->nhits = (uint8_t)(n + (n < 255));
 }
 
 #if RT_COMPILED_PROBE
