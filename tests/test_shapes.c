@@ -31,6 +31,7 @@ static rt_object sphere(double x, double y, double z, double r)
     o.center = vd(x, y, z);
     o.radius = from_d(r);
     o.radius2 = w_sq(o.radius);
+    o.behind = rt_sphere_behind(o.radius);
     return o;
 }
 
@@ -281,6 +282,67 @@ static void test_shadow_cull(void **state)
     assert_true(hits > n / 10);
     assert_true(culled > n / 20);
     assert_true(near_culled > n / 100);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
+/* The sphere test's cut for spheres behind the ray (rt_object.behind) never changes a hit:
+ * secondary rays from points near a sphere's surface, inside and outside it (within 0.002 +
+ * 0.1% of the radius, at scales from 0.01 to 500 and up to 3000 from the origin), leaving
+ * roughly outward, find through rt_nearest_but the same object at the same distance as with
+ * the cut switched off (behind = -R_MAX), and the cut decides many of them, near misses
+ * included. A cut 2^-10 too close to -r fails here (origins just inside, aimed out). */
+static void test_behind_cut(void **state)
+{
+    (void)state;
+    static rt_scene s, plain;
+    int n = 200000, cut = 0, near_cut = 0, hits = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double size = i % 7 == 0 ? rnd(20, 500) : (i % 7 == 1 ? rnd(0.01, 0.1) : rnd(0.2, 3));
+        double span = i % 5 == 0 ? 3000.0 : 10.0;
+        s = (rt_scene){0};
+        s.nobjects = 1 + i % 3;
+        double ox = rnd(-span, span), oy = rnd(-span, span), oz = rnd(-span, span);
+        for (int j = 0; j < s.nobjects; j++)
+            s.objects[j] = sphere(ox + rnd(-3, 3) * size, oy + rnd(-3, 3) * size,
+                                  oz + rnd(-3, 3) * size, rnd(0.3, 1) * size);
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        rt_scene_prepare(&s);
+        plain = s;
+        for (int j = 0; j < s.nobjects; j++)
+            plain.objects[j].behind = r_neg(R_MAX);
+        /* an origin near the surface of sphere k, along a random u from its centre */
+        const rt_object *o = &s.objects[i % s.nobjects];
+        double cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z),
+               r = to_d(o->radius);
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+        ux /= un, uy /= un, uz /= un;
+        double rq = r + rnd(-0.002, 0.002) + r * rnd(-0.001, 0.001);
+        vec3 org = vd(cx + ux * rq, cy + uy * rq, cz + uz * rq);
+        double j = i % 4 == 0 ? 1.5 : 0.05;
+        dir3 d = dirv(ux + rnd(-j, j), uy + rnd(-j, j), uz + rnd(-j, j));
+        real t_got, t_want;
+        int got = rt_nearest_but(&s, org, d, R_T_MAX, -1, &t_got);
+        int want = rt_nearest_but(&plain, org, d, R_T_MAX, -1, &t_want);
+        if (got != want || t_got != t_want)
+            fail_msg("with the cut object %d at %g, without %d at %g (case %d)", got, to_d(t_got),
+                     want, to_d(t_want), i);
+        hits += want >= 0;
+        real tca = v3_dot_d_in(v3_sub_in(o->center, org), d);
+        if (tca < o->behind) {
+            cut++;
+            if (r_abs(r_sub(tca, o->behind)) < from_d(0.001 + r * 0.0005))
+                near_cut++;
+        }
+    }
+    print_message("behind cut: %d rays near sphere surfaces, %d hits, %d cut (%d within "
+                  "0.001 + 0.05%% of r of the cut)\n",
+                  n, hits, cut, near_cut);
+    assert_true(hits > n / 10);
+    assert_true(cut > n / 20);
+    assert_true(near_cut > n / 200);
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
@@ -627,11 +689,11 @@ static void test_far_mirror_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sphere_cases),     cmocka_unit_test(test_plane_cases),
-        cmocka_unit_test(test_sphere_random),    cmocka_unit_test(test_shadow_cull),
-        cmocka_unit_test(test_shadow_bound),     cmocka_unit_test(test_primary_cull),
-        cmocka_unit_test(test_primary_tiles),    cmocka_unit_test(test_sample_record),
-        cmocka_unit_test(test_far_mirror_chain),
+        cmocka_unit_test(test_sphere_cases),  cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random), cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_shadow_bound),  cmocka_unit_test(test_behind_cut),
+        cmocka_unit_test(test_primary_cull),  cmocka_unit_test(test_primary_tiles),
+        cmocka_unit_test(test_sample_record), cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

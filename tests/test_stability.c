@@ -168,6 +168,7 @@ static void test_sphere_properties(void **state)
         double r = exp2(rnd(-7, 11));
         rt_object s = {.kind = RT_SPHERE, .center = vq(c), .radius = from_d(r)};
         s.radius2 = w_sq(s.radius);
+        s.behind = rt_sphere_behind(s.radius);
         dv(s.center, c);
         r = to_d(s.radius);
         /* origin: in the cube (primary and secondary rays), or one ray length further out

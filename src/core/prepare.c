@@ -249,6 +249,7 @@ void rt_scene_prepare(rt_scene *s)
         rt_object *o = &s->objects[i];
         if (o->kind == RT_SPHERE) {
             o->radius2 = w_sq(o->radius);
+            o->behind = rt_sphere_behind(o->radius);
             o->inv_radius = r_inv_len(o->radius);
         } else {
             /* A plane is given by any normal vector and the offset along the unit normal. A

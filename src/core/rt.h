@@ -67,12 +67,21 @@ typedef struct rt_object {
     uint8_t material; /* index into rt_scene.materials */
     vec3 center;      /* sphere */
     real radius;
+    real behind; /* sphere: a ray with tca below it starts outside, the sphere behind it
+                    (rt_sphere_behind(radius), filled by rt_scene_prepare) */
     wide radius2;
     rinv inv_radius; /* sphere: for its normals (d3_norm_near), filled by rt_scene_prepare */
     vec3 axis;       /* plane: normal as given (any length) */
     real offset;     /* plane: points p with p . unit(axis) = offset */
     dir3 normal;     /* plane: unit(axis), filled by rt_scene_prepare */
 } rt_object;
+
+/* A sphere's rt_object.behind: -(radius + 2^-10 + radius 2^-13). A ray whose tca = l . d (as the
+ * sphere test forms it) is below this starts outside the sphere (shapes.c: sphere_hit). */
+static inline real rt_sphere_behind(real radius)
+{
+    return r_neg(r_add(r_add(radius, R(0.0009765625)), r_shr(radius, 13)));
+}
 
 typedef struct rt_light {
     vec3 pos;

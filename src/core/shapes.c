@@ -9,8 +9,14 @@
  * |L|^2 - tca^2 would cancel). Given l = centre - origin and tca = l . d. */
 SHAPES_INLINE int sphere_hit(const rt_object *o, vec3 l, real tca, dir3 d, real tmax, real *t)
 {
-    /* Cheap miss test: the sphere lies behind an origin that is outside it. */
-    if (tca < 0 && w_len2(l) > o->radius2)
+    /* Cheap miss test: the sphere lies behind an origin that is outside it. tca below
+     * o->behind = -(r + 2^-10 + r 2^-13) says so without |l|^2: tca is l . d within
+     * |l| 2^-U_LEN_ERR_SHIFT + 2 LSB (|d| = 1 within 2^-28 fixed, 2^-21 float, 2^-14
+     * rt-fixed16: docs/numerics.md), so an origin with |l| <= r (1 + 2^-15) has
+     * |tca| <= r (1 + 2^-15)(1 + 2^-14) + 2 LSB < r (1 + 2^-13) + 2^-10 = -behind (r_shr's
+     * rounding is a step, within 2^-10). Below it, |l| > r (1 + 2^-15): w_len2(l) > radius2
+     * (exact in fixed, within 2^-22 relative in float) and the test after it rejects too. */
+    if (tca < o->behind || (tca < 0 && w_len2(l) > o->radius2))
         return 0;
     /* every hit lies at t >= tca - radius */
     if (tca > r_add(tmax, o->radius))
