@@ -69,6 +69,17 @@ static void fz_render(uint64_t h)
         for (int x = 0; x < w; x++)
             if (fz_pixels[y * FZ_W + x] > 0xFFFFFFu)
                 fz_fail("pixel out of range", x, y);
+    /* The primary rays' tile candidates (rt_view_cull) change no pixel: the same frame again
+     * with them. */
+    static uint32_t plain[FZ_W * FZ_H];
+    memcpy(plain, fz_pixels, sizeof plain);
+    rt_view_cull(&v, &fz_scene);
+    rt_stats culled = {0};
+    rt_render(&fz_scene, &v, &p, fz_pixels, FZ_W, &culled, fz_work, fz_traced);
+    for (int y = 0; y < hgt; y++)
+        for (int x = 0; x < w; x++)
+            if (fz_pixels[y * FZ_W + x] != plain[y * FZ_W + x])
+                fz_fail("rt_view_cull changed a pixel", x, y);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
