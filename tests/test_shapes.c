@@ -196,6 +196,47 @@ static void test_sphere_random(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* A shadow segment as trace.c builds it, passing by the point q at distance rq from c in the
+ * direction u (not unit), as seen from the scene's light 0: a surface point p beyond q, a normal
+ * facing the light tilted at random, p lifted R_EPS_OFFSET along it (p_out), aimed from p (or,
+ * `lifted`, from p_out, as for a light near a surface) and stopped R_EPS_OFFSET short of the
+ * light. 0 where there is no such segment (p outside the scene cube or at the light, the normal
+ * turned away, the light within R_EPS_OFFSET). */
+static int shadow_segment(const rt_scene *s, double cx, double cy, double cz, double ux, double uy,
+                          double uz, double rq, int lifted, vec3 *p_out, dir3 *l, real *seg)
+{
+    const vec3 lp = s->lights[0].pos;
+    double lx = to_d(lp.x), ly = to_d(lp.y), lz = to_d(lp.z);
+    double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+    double qx = cx + ux / un * rq, qy = cy + uy / un * rq, qz = cz + uz / un * rq;
+    double k = rnd(1.02, 3);
+    vec3 p = vd(lx + (qx - lx) * k, ly + (qy - ly) * k, lz + (qz - lz) * k);
+    if (!v3_within(p, R_SCENE_MAX))
+        return 0;
+    vec3 to_light = v3_sub(lp, p);
+    if (v3_is_zero(to_light))
+        return 0;
+    real dist;
+    *l = d3_norm(to_light, &dist);
+    /* a surface normal facing the light, tilted at random */
+    dir3 nrm = d3_norm(
+        vd(to_d(l->x) + rnd(-0.9, 0.9), to_d(l->y) + rnd(-0.9, 0.9), to_d(l->z) + rnd(-0.9, 0.9)),
+        0);
+    if (d3_dot(nrm, *l) <= 0)
+        return 0;
+    *p_out = v3_along(p, nrm, R_EPS_OFFSET);
+    if (lifted) {
+        vec3 t2 = v3_sub(lp, *p_out);
+        if (v3_is_zero(t2))
+            return 0;
+        *l = d3_norm(t2, &dist);
+    }
+    if (dist <= R_EPS_OFFSET)
+        return 0;
+    *seg = r_sub(dist, R_EPS_OFFSET);
+    return 1;
+}
+
 /* The shadow rays' quick rejection (rt_scene.shadow_cull) never changes a result: shadow
  * segments built as trace.c builds them (from a surface point lifted R_EPS_OFFSET, aimed from
  * the point or from the lifted point, stopped R_EPS_OFFSET short of the light) that pass within
@@ -234,33 +275,11 @@ static void test_shadow_cull(void **state)
             ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
             rq = r + rnd(-0.002, 0.012) + r * rnd(0, 0.002);
         }
-        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
-        double qx = cx + ux / un * rq, qy = cy + uy / un * rq, qz = cz + uz / un * rq;
-        double k = rnd(1.02, 3);
-        vec3 p = vd(lx + (qx - lx) * k, ly + (qy - ly) * k, lz + (qz - lz) * k);
-        if (!v3_within(p, R_SCENE_MAX))
+        vec3 p_out;
+        dir3 l;
+        real seg, t;
+        if (!shadow_segment(&s, cx, cy, cz, ux, uy, uz, rq, i & 1, &p_out, &l, &seg))
             continue;
-        vec3 to_light = v3_sub(s.lights[0].pos, p);
-        if (v3_is_zero(to_light))
-            continue;
-        real dist;
-        dir3 l = d3_norm(to_light, &dist);
-        /* a surface normal facing the light, tilted at random */
-        dir3 nrm = d3_norm(
-            vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9), to_d(l.z) + rnd(-0.9, 0.9)),
-            0);
-        if (d3_dot(nrm, l) <= 0)
-            continue;
-        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
-        if (i & 1) { /* aimed from the lifted point, as for a light near a surface */
-            vec3 t2 = v3_sub(s.lights[0].pos, p_out);
-            if (v3_is_zero(t2))
-                continue;
-            l = d3_norm(t2, &dist);
-        }
-        if (dist <= R_EPS_OFFSET)
-            continue;
-        real seg = r_sub(dist, R_EPS_OFFSET), t;
         int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
         rt_stats st = {0};
         int got = rt_occluded(&s, &st, 0, 1, p_out, l, seg);
@@ -390,32 +409,11 @@ static void test_shadow_bound(void **state)
         double a2 = ax * ax + ay * ay + az * az + 1e-30, ua = (ux * ax + uy * ay + uz * az) / a2;
         ux -= ua * ax, uy -= ua * ay, uz -= ua * az;
         double rq = i % 4 == 1 ? rb * rnd(1, 3) : rb + rnd(-0.003, 0.02) + rb * rnd(0, 0.002);
-        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
-        double qx = cx + ux / un * rq, qy = cy + uy / un * rq, qz = cz + uz / un * rq;
-        double k = rnd(1.02, 3);
-        vec3 p = vd(lx + (qx - lx) * k, ly + (qy - ly) * k, lz + (qz - lz) * k);
-        if (!v3_within(p, R_SCENE_MAX))
+        vec3 p_out;
+        dir3 l;
+        real seg;
+        if (!shadow_segment(&s, cx, cy, cz, ux, uy, uz, rq, i & 1, &p_out, &l, &seg))
             continue;
-        vec3 to_light = v3_sub(s.lights[0].pos, p);
-        if (v3_is_zero(to_light))
-            continue;
-        real dist;
-        dir3 l = d3_norm(to_light, &dist);
-        dir3 nrm = d3_norm(
-            vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9), to_d(l.z) + rnd(-0.9, 0.9)),
-            0);
-        if (d3_dot(nrm, l) <= 0)
-            continue;
-        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
-        if (i & 1) { /* aimed from the lifted point, as for a light near a surface */
-            vec3 t2 = v3_sub(s.lights[0].pos, p_out);
-            if (v3_is_zero(t2))
-                continue;
-            l = d3_norm(t2, &dist);
-        }
-        if (dist <= R_EPS_OFFSET)
-            continue;
-        real seg = r_sub(dist, R_EPS_OFFSET);
         uint32_t all = ((uint32_t)1 << s.nobjects) - 1;
         rt_stats st = {0}, st_plain = {0};
         int got = rt_occluded(&s, &st, 0, all, p_out, l, seg);

@@ -343,6 +343,30 @@ static void add_floor(rt_scene *s, int mat)
     o->axis = vd(0, 1, 0);
 }
 
+/* The shadow of a sphere on a matte floor (no highlight, no reflection). */
+static void shadow_scene(rt_scene *s)
+{
+    scene_base(s);
+    int mf = add_material(s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int ms = add_material(s, (rt_material){.diffuse = vd(0.2, 0.6, 0.2), .ambient = from_d(1)});
+    add_floor(s, mf);
+    add_sphere(s, ms, -0.5, 2.0, 0, 1.0);
+    s->lights[0].pos = vd(-3, 9, -2);
+    s->camera = (rt_camera){vd(0, 7, 5), vd(0.5, 0, 0.5), vd(0, 1, 0), from_d(45)};
+}
+
+/* A yellow sphere above a mirror floor (light and camera set by the caller). */
+static void mirror_scene(rt_scene *s)
+{
+    scene_base(s);
+    int mf = add_material(
+        s,
+        (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1), .reflect = from_d(0.7)});
+    int ms = add_material(s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
+    add_floor(s, mf);
+    add_sphere(s, ms, 0, 3.5, -3, 1.0);
+}
+
 /* A matte sphere of radius r at (x, y, -10), seen head-on from the origin. */
 static void one_sphere_scene(rt_scene *s, double x, double y, double r)
 {
@@ -425,13 +449,7 @@ static void test_shadow_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
-    int ms = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.6, 0.2), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    add_sphere(&s, ms, -0.5, 2.0, 0, 1.0);
-    s.lights[0].pos = vd(-3, 9, -2);
-    s.camera = (rt_camera){vd(0, 7, 5), vd(0.5, 0, 0.5), vd(0, 1, 0), from_d(45)};
+    shadow_scene(&s);
     check_edge(&s, RT_SPLIT_LIGHT, 100, "shadow edge");
 }
 
@@ -441,13 +459,7 @@ static void test_reflected_outline(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int mf = add_material(
-        &s,
-        (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1), .reflect = from_d(0.7)});
-    int ms = add_material(&s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    add_sphere(&s, ms, 0, 3.5, -3, 1.0);
+    mirror_scene(&s);
     s.lights[0].pos = vd(0, 20, 20); /* the sphere's shadow falls behind the view */
     s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
     check_edge(&s, RT_SPLIT_SECONDARY, 90, "reflected outline");
@@ -677,13 +689,7 @@ static void test_probe_shadow_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
-    int ms = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.6, 0.2), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    add_sphere(&s, ms, -0.5, 2.0, 0, 1.0);
-    s.lights[0].pos = vd(-3, 9, -2);
-    s.camera = (rt_camera){vd(0, 7, 5), vd(0.5, 0, 0.5), vd(0, 1, 0), from_d(45)};
+    shadow_scene(&s);
     check_probe(&s, 0, 32, 100, "probe: shadow edge"); /* twice the split threshold */
 }
 
@@ -694,13 +700,7 @@ static void test_probe_reflected_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    int mf = add_material(
-        &s,
-        (rt_material){.diffuse = vd(0.3, 0.3, 0.3), .ambient = from_d(1), .reflect = from_d(0.7)});
-    int ms = add_material(&s, (rt_material){.diffuse = vd(0.9, 0.8, 0.1), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    add_sphere(&s, ms, 0, 3.5, -3, 1.0);
+    mirror_scene(&s);
     s.lights[0].pos = vd(0, 20, 20);
     s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
     check_probe(&s, 0, 64, 90, "probe: reflected edge"); /* what adaptive mode misses too */
