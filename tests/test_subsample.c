@@ -891,6 +891,46 @@ static void test_min_contrib(void **state)
     assert_int_equal(count[4], 0);    /* 0.6 > 0.5: not even the first bounce */
 }
 
+/* A checkerboard whose two colours are equal has no cell edges to find: adaptive and probe
+ * renders of the shadow scene with such a floor trace the same points and give the same pixels
+ * as with a plain floor; with two colours, the cell edges are split (more points traced). */
+static void test_one_tone_checker(void **state)
+{
+    (void)state;
+    static rt_scene plain, one, two;
+    static uint32_t px_plain[H * W];
+    shadow_scene(&plain);
+    one = plain;
+    one.materials[0].tex = (rt_texture){
+        .kind = RT_TEX_CHECKER, .scale = from_d(2), .color2 = one.materials[0].diffuse};
+    two = one;
+    two.materials[0].tex.color2 = vd(0.2, 0.3, 0.4);
+    rt_scene_prepare(&plain);
+    rt_scene_prepare(&one);
+    rt_scene_prepare(&two);
+    assert_int_equal(one.materials[0].tex.cells, 0);
+    assert_int_equal(two.materials[0].tex.cells, 1);
+    rt_view v;
+    rt_view_init(&v, &plain.camera, W, H);
+    for (int mode = RT_MODE_ADAPTIVE; mode <= RT_MODE_PROBE; mode++) {
+        if (mode == RT_MODE_PROBE && !RT_COMPILED_PROBE)
+            continue;
+        const rt_params p = {
+            .depth = plain.depth, .mode = mode, .grid = 8, .threshold = TS_THRESHOLD};
+        rt_stats sp = {0}, s1 = {0}, s2 = {0};
+        assert_true(rt_render_work_size(&p, W) <= sizeof work);
+        rt_render(&plain, &v, &p, px_plain, W, &sp, work, NULL);
+        rt_render(&one, &v, &p, adpx, W, &s1, work, NULL);
+        assert_memory_equal(px_plain, adpx, sizeof adpx);
+        assert_int_equal(sp.rays_primary, s1.rays_primary);
+        rt_render(&two, &v, &p, adpx, W, &s2, work, NULL);
+        print_message("mode %d: %lu points traced with a plain or one-tone checker floor, %lu with "
+                      "two tones\n",
+                      mode, (unsigned long)s1.rays_primary, (unsigned long)s2.rays_primary);
+        assert_true(s2.rays_primary > s1.rays_primary);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -904,6 +944,7 @@ int main(void)
         cmocka_unit_test(test_bands),
         cmocka_unit_test(test_bands_into),
         cmocka_unit_test(test_min_contrib),
+        cmocka_unit_test(test_one_tone_checker),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),
