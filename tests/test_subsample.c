@@ -892,14 +892,18 @@ static void test_min_contrib(void **state)
 }
 
 /* A checkerboard whose two colours are equal has no cell edges to find: adaptive and probe
- * renders of the shadow scene with such a floor trace the same points and give the same pixels
- * as with a plain floor; with two colours, the cell edges are split (more points traced). */
+ * renders of the shadow scene (its ball a two-tone checker) with such a floor trace the same
+ * points and give the same pixels as with a plain floor; with two colours, the floor's cell
+ * edges are split (more points traced). */
 static void test_one_tone_checker(void **state)
 {
     (void)state;
     static rt_scene plain, one, two;
     static uint32_t px_plain[H * W];
     shadow_scene(&plain);
+    /* the ball is a two-tone checker in all three (so texturing is on in each) */
+    plain.materials[1].tex =
+        (rt_texture){.kind = RT_TEX_CHECKER, .scale = from_d(3), .color2 = vd(0.6, 0.2, 0.2)};
     one = plain;
     one.materials[0].tex = (rt_texture){
         .kind = RT_TEX_CHECKER, .scale = from_d(2), .color2 = one.materials[0].diffuse};
