@@ -144,13 +144,14 @@ int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, ui
         cand &= ((uint32_t)1 << s->nobjects) - 1;
     if (skip >= 0)
         cand &= ~((uint32_t)1 << skip);
-    /* Set bits in increasing order: rt_nearest_but's order, so the same tmax at every test. */
+    /* Set bits in increasing order: rt_nearest_but's order, so the same tmax at every test.
+     * The tests are rt_shapes' out-of-line copies (the same code): few objects are left to
+     * test, and the programs stay within their size limits. */
     for (; cand; cand &= cand - 1) {
         int i = __builtin_ctz(cand);
         const rt_object *o = &s->objects[i];
         real hit;
-        if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
-                                 : shapes_plane(o, &org, &d, tmax, &hit)) {
+        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
             tmax = hit;
             best = i;
         }
