@@ -69,8 +69,8 @@ static void fz_render(uint64_t h)
         for (int x = 0; x < w; x++)
             if (fz_pixels[y * FZ_W + x] > 0xFFFFFFu)
                 fz_fail("pixel out of range", x, y);
-    /* The primary rays' tile candidates (rt_view_cull) change no pixel: the same frame again
-     * with them. */
+    /* The primary rays' tile candidates and the mirror candidates (rt_view_cull) change no
+     * pixel: the same frame again with them. */
     static uint32_t plain[FZ_W * FZ_H];
     memcpy(plain, fz_pixels, sizeof plain);
     rt_view_cull(&v, &fz_scene);

@@ -580,6 +580,148 @@ static void test_primary_tiles(void **state)
     assert_int_equal(fx_event_count[FX_EV_DOMAIN], 0);
 }
 
+#if REAL_FIXED
+static double ud(unit u) { return ldexp((double)u, -FX_UNIT_FRAC); }
+#else
+static double ud(unit u) { return u; }
+#endif
+
+/* rt_view_cull's mirror candidates keep every sphere that the reflection off the view's mirror
+ * plane can hit: random views of spheres over a mirror plane (a few across it), the eye on its
+ * front, looking at a sphere or at its mirror image, at every field of view. For each pixel
+ * whose primary ray's nearest hit is the plane, the reflected ray as trace_secondary casts it
+ * (from p_out along d3_reflect_k) is tested against every sphere: a sphere it hits must be among
+ * the pixel's mirror candidates, and the pixel's direction must lie within the sphere's mirror
+ * cone (rt_scene_mirror_cone, the angle in double); rt_nearest_cand with the candidates gives
+ * rt_nearest_but's hit. Most sphere tests are left out. */
+static void test_mirror_tiles(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    static rt_view v;
+    static const int sizes[][2] = {{64, 48}, {128, 64}, {33, 97}, {320, 240}, {200, 20}};
+    const int pl = 3; /* the mirror, between spheres in the objects' order */
+    long tests = 0, skipped = 0, rays = 0, hits = 0, views = 0;
+    double closest = 0; /* a hit's sine from the cone's axis over the cone's sine, at most */
+    fx_events_reset();
+    for (int n = 0; n < 300; n++) {
+        double span = n % 5 == 0 ? 200.0 : 12.0;
+        s = (rt_scene){0};
+        s.nobjects = 9;
+        double nx = rnd(-1, 1), ny = rnd(-1, 1), nz = rnd(-1, 1);
+        if (n % 3 == 0) /* a floor, as in the intro */
+            nx = nz = 0, ny = 1;
+        double len = sqrt(nx * nx + ny * ny + nz * nz), off = rnd(-span / 4, span / 4);
+        if (len < 0.1)
+            continue;
+        nx /= len, ny /= len, nz /= len;
+        for (int j = 0, k = 0; j < 8; j++, k++) {
+            if (k == pl)
+                k++;
+            double r = n % 5 == 0 ? rnd(0.05, 30) : rnd(0.05, 3);
+            double c[3] = {rnd(-span, span), rnd(-span, span), rnd(-span, span)};
+            double h = c[0] * nx + c[1] * ny + c[2] * nz - off;
+            if (h < 0 && j % 4) /* most in front of the mirror */
+                c[0] -= 2 * h * nx, c[1] -= 2 * h * ny, c[2] -= 2 * h * nz;
+            s.objects[k] = sphere(c[0], c[1], c[2], r);
+        }
+        s.objects[pl] = plane(nx, ny, nz, off);
+        s.objects[pl].material = 1;
+        s.nmaterials = 2;
+        s.materials[0].ior = R_ONE;
+        s.materials[1].ior = R_ONE;
+        s.materials[1].reflect = R(0.5);
+        double e[3] = {rnd(-span, span), rnd(-span, span), rnd(-span, span)};
+        double h = e[0] * nx + e[1] * ny + e[2] * nz - off;
+        if (h < 0)
+            e[0] -= 2 * h * nx, e[1] -= 2 * h * ny, e[2] -= 2 * h * nz;
+        /* look at a sphere, at its mirror image, or anywhere */
+        const rt_object *a = &s.objects[n % 3];
+        double ac[3] = {to_d(a->center.x), to_d(a->center.y), to_d(a->center.z)};
+        double ah = ac[0] * nx + ac[1] * ny + ac[2] * nz - off;
+        vec3 at = n % 3 == 1 ? a->center
+            : n % 3 == 2     ? vd(ac[0] - 2 * ah * nx, ac[1] - 2 * ah * ny, ac[2] - 2 * ah * nz)
+                             : vd(rnd(-span, span), rnd(-span, span), rnd(-span, span));
+        s.camera = (rt_camera){vd(e[0], e[1], e[2]), at, vd(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)),
+                               from_d(n % 4 == 0 ? rnd(10, 120) : rnd(30, 60))};
+        if (!rt_view_ok(&s.camera))
+            continue;
+        rt_scene_prepare(&s);
+        const int *wh = sizes[n % 5];
+        rt_view_init(&v, &s.camera, wh[0], wh[1]);
+        rt_view_cull(&v, &s);
+        if (s.eye_num[pl] >= 0) { /* the eye (rounded) on the plane or behind it: no mirror */
+            assert_int_equal(v.mirror_plane, -1);
+            continue;
+        }
+        assert_int_equal(v.mirror_plane, pl);
+        views++;
+        vec3 axis[RT_MAX_OBJECTS];
+        real cone[RT_MAX_OBJECTS];
+        for (int i = 0; i < s.nobjects; i++)
+            cone[i] = rt_scene_mirror_cone(&s, pl, i, &axis[i]);
+        const dir3 nn = s.objects[pl].normal;
+        for (int y = 0; y < wh[1]; y++)
+            for (int x = 0; x < wh[0]; x++) {
+                dir3 d = rt_view_ray(&v, x, y);
+                real t;
+                if (rt_nearest_primary(&s, d, rt_view_candidates(&v, x, y), &t) != pl)
+                    continue;
+                vec3 p = v3_along_in(s.eye_at, d, t);
+                unit dn = d3_dot(d, nn);
+                if (!v3_within(p, R_SCENE_MAX) || dn > 0)
+                    continue; /* no reflected ray (hit from behind: not the mirror's case) */
+                vec3 p_out = v3_along_in(p, nn, R_EPS_OFFSET);
+                dir3 r = d3_reflect_k(d, nn, dn);
+                uint32_t cand = rt_view_mirror_candidates(&v, x, y);
+                rays++;
+                for (int i = 0; i < s.nobjects; i++) {
+                    if (i == pl)
+                        continue;
+                    tests++;
+                    skipped += !(cand & (1u << i));
+                    real th;
+                    if (!rt_shapes[RT_SPHERE].intersect(&s.objects[i], p_out, r, R_T_MAX, &th))
+                        continue;
+                    hits++;
+                    if (!(cand & (1u << i)))
+                        fail_msg("case %d: sphere %d left out of pixel (%d, %d) of %dx%d, whose "
+                                 "reflected ray hits it at %g",
+                                 n, i, x, y, wh[0], wh[1], to_d(th));
+                    if (cone[i] <= 0)
+                        continue;
+                    double lx = to_d(axis[i].x), ly = to_d(axis[i].y), lz = to_d(axis[i].z);
+                    double dx = ud(d.x), dy = ud(d.y), dz = ud(d.z);
+                    double cs = (lx * dx + ly * dy + lz * dz) / sqrt(lx * lx + ly * ly + lz * lz) /
+                        sqrt(dx * dx + dy * dy + dz * dz);
+                    double sn = sqrt(cs < 1 ? 1 - cs * cs : 0) / to_d(cone[i]);
+                    if (cs <= 0 || sn > 1)
+                        fail_msg("case %d pixel (%d, %d): sphere %d hit by the reflection, the "
+                                 "view ray %.6f of its mirror cone's sine off the axis",
+                                 n, x, y, i, cs <= 0 ? 99.0 : sn);
+                    closest = sn > closest ? sn : closest;
+                }
+                real t1, t2;
+                int id1 = rt_nearest_but(&s, p_out, r, R_T_MAX, pl, &t1);
+                int id2 = rt_nearest_cand(&s, p_out, r, R_T_MAX, pl, cand, &t2);
+                if (id1 != id2 || t1 != t2)
+                    fail_msg("case %d pixel (%d, %d): %d at %g with every object, %d at %g with "
+                             "the mirror candidates",
+                             n, x, y, id1, to_d(t1), id2, to_d(t2));
+            }
+    }
+    print_message("mirror tiles: %ld views, %ld reflected rays, %ld sphere hits (the closest to "
+                  "its cone's edge at %.4f of the cone's sine), %ld of %ld sphere tests left "
+                  "out\n",
+                  views, rays, hits, closest, skipped, tests);
+    assert_true(views > 100);
+    assert_true(hits > rays / 20);
+    assert_true(closest > 0.9);
+    assert_true(skipped > tests / 2);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+    assert_int_equal(fx_event_count[FX_EV_DOMAIN], 0);
+}
+
 /* Tracing a pixel fills the per-sample record adaptive subsampling will compare. */
 static void test_sample_record(void **state)
 {
@@ -687,11 +829,12 @@ static void test_far_mirror_chain(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sphere_cases),  cmocka_unit_test(test_plane_cases),
-        cmocka_unit_test(test_sphere_random), cmocka_unit_test(test_shadow_cull),
-        cmocka_unit_test(test_shadow_bound),  cmocka_unit_test(test_behind_cut),
-        cmocka_unit_test(test_primary_cull),  cmocka_unit_test(test_primary_tiles),
-        cmocka_unit_test(test_sample_record), cmocka_unit_test(test_far_mirror_chain),
+        cmocka_unit_test(test_sphere_cases),     cmocka_unit_test(test_plane_cases),
+        cmocka_unit_test(test_sphere_random),    cmocka_unit_test(test_shadow_cull),
+        cmocka_unit_test(test_shadow_bound),     cmocka_unit_test(test_behind_cut),
+        cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_primary_tiles),
+        cmocka_unit_test(test_mirror_tiles),     cmocka_unit_test(test_sample_record),
+        cmocka_unit_test(test_far_mirror_chain),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

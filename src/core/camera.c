@@ -44,15 +44,16 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     while (((width - 1) >> k) >= RT_VIEW_TILES || ((height - 1) >> k) >= RT_VIEW_TILES)
         k++;
     v->cull_shift = k;
+    v->mirror_plane = -1;
     for (int i = 0; i < RT_VIEW_TILES; i++)
-        v->cull_cols[i] = v->cull_rows[i] = 0xFFFFFFFFu;
+        v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
 }
 
 /* Once per frame: compiled for size (cold), off the image's hot path. */
 #define VIEW_ONCE __attribute__((cold, noinline))
 
-/* Clears `bit` in the tiles of one axis of the view (axis 0: cull_cols, along right; 1:
- * cull_rows, along -up, so that pixel y has ib = 2y + 1 - h as x has ia = 2x + 1 - w) where no
+/* Clears `bit` in the tiles of one axis of the view's sets `cols`/`rows` (axis 0: cols, along
+ * right; 1: rows, along -up, so that pixel y has ib = 2y + 1 - h as x has ia = 2x + 1 - w) where no
  * direction within the cone of sine sn around the unit vector l lies, given c = l . (right or
  * -up), z = l . fwd and zz = z^2 - sn^2 >= 1/4.
  *
@@ -64,11 +65,11 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
  * 2^-10 + |a| 2^-10, which also covers tan_half's rounding and the rays' own directions (within
  * 2^-15 of their pixel's in either build). Pixel x lies at a = (2x + 1 - w) tan_half / h: the
  * pixels of the range, and one more either side, are kept. */
-VIEW_ONCE static void view_keep(rt_view *v, int axis, unit c, unit z, unit sn, unit zz,
-                                uint32_t bit)
+VIEW_ONCE static void view_keep(rt_view *v, uint32_t *cols, uint32_t *rows, int axis, unit c,
+                                unit z, unit sn, unit zz, uint32_t bit)
 {
     int n = axis ? v->height : v->width, h = v->height, k = v->cull_shift;
-    uint32_t *set = axis ? v->cull_rows : v->cull_cols;
+    uint32_t *set = axis ? rows : cols;
     real root = r_sqrt(u_to_real(u_add(u_mul(c, c), zz)));
     real mid = u_to_real(u_mul(c, z)), half = r_mul(u_to_real(sn), root), den = u_to_real(zz);
     real lim = r_add(r_from_ratio(n, h), R(2.0)); /* beyond the image by a height at least */
@@ -88,24 +89,46 @@ VIEW_ONCE static void view_keep(rt_view *v, int axis, unit c, unit z, unit sn, u
             set[i] &= ~bit;
 }
 
+/* Leaves `bit` out of the tiles of the sets `cols`/`rows` where no primary ray's direction lies
+ * within the cone of sine `cone` around the direction of `axis` (from the eye), unless the cone
+ * reaches 60 degrees off the view. */
+VIEW_ONCE static void view_cone(rt_view *v, uint32_t *cols, uint32_t *rows, vec3 axis, real cone,
+                                uint32_t bit)
+{
+    dir3 l = d3_norm(axis, 0);
+    unit z = d3_dot(l, v->fwd), sn = u_from_real(cone);
+    unit zz = u_add(u_mul(z, z), u_neg(u_mul(sn, sn)));
+    if (z <= 0 || zz < U(0.25))
+        return; /* the cone reaches 60 degrees off the view: no bound */
+    for (int a = 0; a < 2; a++)
+        view_keep(v, cols, rows, a, d3_dot(l, a ? d3_neg(v->up) : v->right), z, sn, zz, bit);
+}
+
 VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
 {
+    v->mirror_plane = -1;
     for (int i = 0; i < RT_VIEW_TILES; i++)
-        v->cull_cols[i] = v->cull_rows[i] = 0xFFFFFFFFu;
+        v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
     if (v->eye.x != s->eye_at.x || v->eye.y != s->eye_at.y || v->eye.z != s->eye_at.z)
         return; /* rt_nearest_primary does not serve this view */
     for (int i = 0; i < s->nobjects; i++) {
         real cone = s->eye_cone[i];
         if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->eye_cull[i] <= 0)
             continue;
-        dir3 l = d3_norm(s->eye_l[i], 0);
-        unit z = d3_dot(l, v->fwd), sn = u_from_real(cone);
-        unit zz = u_add(u_mul(z, z), u_neg(u_mul(sn, sn)));
-        if (z <= 0 || zz < U(0.25))
-            continue; /* the cone reaches 60 degrees off the view: no bound */
-        for (int axis = 0; axis < 2; axis++)
-            view_keep(v, axis, d3_dot(l, axis ? d3_neg(v->up) : v->right), z, sn, zz,
-                      (uint32_t)1 << i);
+        view_cone(v, v->cull_cols, v->cull_rows, s->eye_l[i], cone, (uint32_t)1 << i);
+    }
+    /* The reflections off the frame's mirror: each sphere's mirror cone (rt_scene_mirror_cone)
+     * is the set of primary directions whose reflected ray can hit it; a plane stays in every
+     * tile. */
+    int pl = rt_scene_mirror(s);
+    v->mirror_plane = pl;
+    if (pl < 0)
+        return;
+    for (int i = 0; i < s->nobjects; i++) {
+        vec3 l;
+        real cone = rt_scene_mirror_cone(s, pl, i, &l);
+        if (cone > 0)
+            view_cone(v, v->mirror_cols, v->mirror_rows, l, cone, (uint32_t)1 << i);
     }
 }
 

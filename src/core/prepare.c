@@ -178,6 +178,74 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach, real *cone)
     return k > 0 ? k : 0;
 }
 
+int rt_scene_mirror(const rt_scene *s)
+{
+    if (!rt_scene_has(s, RT_FX_REFLECT) || s->forced)
+        return -1; /* no reflected ray, or trace_secondary tests every object */
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        const rt_material *m = &s->materials[o->material];
+        /* eye_num < 0: the eye on the side the normal points to, which every ray from it meets */
+        if (o->kind == RT_PLANE && (m->reflect > 0 || m->transmit > 0) && s->eye_num[i] < 0)
+            return i;
+    }
+    return -1;
+}
+
+/* The mirror cone of sphere i (radius r, centre c) in plane pl (unit normal n as prepared, n^ its
+ * exact unit vector, M the mirror in the plane {x : x . n^ = offset}), for the rays traced as
+ * follows: a primary ray from the eye e along d (rt_view_ray) whose nearest hit is at t0 > 0 on
+ * the plane's front; p = e + t0 d as trace_ray forms it, p_out = p + R_EPS_OFFSET n, and the
+ * reflected ray from p_out along d' = d3_reflect_k(d, n, d . n), tested against the sphere with
+ * sphere_intersect.
+ *
+ * If that test reports a hit at t > 0, the point p_out + t d' lies within r + rho of c (rho the
+ * test's rounding, which scene_cull's margin covers). M is an isometry, so M(p_out) + t M(d')
+ * lies within r + rho of M(c), and the computed mirror centre c' = c - 2 side n (side = c . n -
+ * offset as scene_side forms it) is within rho_c of M(c). Now M(d') = d + e_d, |e_d| <= delta
+ * (d' is d mirrored in n, rounded and renormalised, and n is unit to 2^-U_LEN_ERR_SHIFT / 4);
+ * M(p_out) = p + f with |f| <= R_EPS_OFFSET (1 + 2^-14) + 2 dist(p, plane) + rounding (M(p) is
+ * p moved twice its distance from the plane); p = e + t0 d + g, g v3_along_in's rounding. So
+ * the point e + (t0 + t) d of the primary ray's line, ahead of the eye, lies within
+ * R = r + rho + rho_c + |f| + |g| + t delta of c', and t0 + t <= D' + R (D' = |c' - e|: both
+ * legs point the same way to within delta), so t0 + t <= (D' + r)(1 + 2^-9) + 1 with the bounds
+ * below. They hold in every build (fixed with Q2.30 units, float, rt-fixed16's Q16.16 units):
+ * delta <= 2^-13 (2^-28 fixed, 2^-21 float; rt-fixed16's rounded d . n and renormalisation
+ * 2^-15); dist(p, plane) <= t0 2^-14 + a few steps (t0 times the rounding of d . n and of n's
+ * length, plus eye_num's and the division's rounding); rho_c <= 2 |side| 2^-14 + a few steps;
+ * and the roundings of coordinates (a Q16.16 step, or float's half ulp, at most 2^-12 inside
+ * the scene cube), a dozen at most. So rho_c + |f| + |g| + t delta <= R_EPS_OFFSET +
+ * (D' + r + 1)(1 + 2^-9) 2^-12 + |side| 2^-13 + 2^-8, well within reach =
+ * 2 R_EPS_OFFSET + 2^-7 + (D' + r + 2 |side|) 2^-10, and rho within scene_cull's margin
+ * (2^-10 + (D' + r) 2^-14: the test runs from p_out, within D' + r of c). The direction d then
+ * lies in the cone scene_cull derives for a sphere at c' of radius r + reach seen from the eye
+ * (its `cone` holds every ray from the eye whose line passes within that radius plus margin of
+ * c' ahead of the eye). No bound when c' leaves the scene cube (scene_cull's range), or the
+ * eye is within that radius of c' (cone 0). */
+real rt_scene_mirror_cone(const rt_scene *s, int pl, int i, vec3 *l)
+{
+    const rt_object *p = &s->objects[pl], *o = &s->objects[i];
+    *l = v3(0, 0, 0);
+    if (o->kind != RT_SPHERE)
+        return 0;
+    real side = scene_side(p, o->center);
+    if (r_abs(side) >= r_muli(R_SCENE_MAX, 2))
+        return 0; /* the mirror image lies outside the scene cube */
+    rt_object m = *o;
+    m.center = v3_along(o->center, p->normal, r_neg(r_muli(side, 2)));
+    if (!v3_within(m.center, R_SCENE_MAX))
+        return 0;
+    vec3 lc = v3_sub(m.center, s->eye_at);
+    real dist = r_sqrt_w(w_len2(lc));
+    real reach = r_add(r_add(r_muli(R_EPS_OFFSET, 2), R(0.0078125)),
+                       r_shr(r_add(r_add(dist, o->radius), r_muli(r_abs(side), 2)), 10));
+    real cone = 0;
+    if (scene_cull(&m, s->eye_at, reach, &cone) <= 0 || cone <= 0)
+        return 0;
+    *l = lc;
+    return cone;
+}
+
 /* The bounding sphere of the scene's spheres (rt_scene.bound_*), centred in the box of their
  * extents, its radius the largest |c_i - centre| + r_i rounded up. Any sphere test that could
  * report a hit on a sphere inside reports a point within r_i + rho_i of c_i, rho_i its

@@ -176,12 +176,24 @@ typedef struct rt_view {
      * cull_rows[y >> cull_shift] (every bit set until rt_view_cull). */
     int cull_shift;
     uint32_t cull_cols[RT_VIEW_TILES], cull_rows[RT_VIEW_TILES];
+    /* Mirror candidates (rt_view_cull): when pixel (x, y)'s primary ray from the prepared eye
+     * meets plane mirror_plane (-1: none) from the front as its nearest hit, the objects whose
+     * test can find the reflected ray trace_secondary casts from there a hit are among the bits
+     * of mirror_cols[x >> cull_shift] & mirror_rows[y >> cull_shift]. */
+    int mirror_plane;
+    uint32_t mirror_cols[RT_VIEW_TILES], mirror_rows[RT_VIEW_TILES];
 } rt_view;
 
 /* The objects rt_nearest_primary must test for pixel (x, y) of the view. */
 static inline uint32_t rt_view_candidates(const rt_view *v, int x, int y)
 {
     return v->cull_cols[x >> v->cull_shift] & v->cull_rows[y >> v->cull_shift];
+}
+
+/* The objects the reflection off v->mirror_plane of pixel (x, y)'s primary ray must test. */
+static inline uint32_t rt_view_mirror_candidates(const rt_view *v, int x, int y)
+{
+    return v->mirror_cols[x >> v->cull_shift] & v->mirror_rows[y >> v->cull_shift];
 }
 
 /* One node of the ray tree as adaptive subsampling compares it. */
@@ -300,6 +312,18 @@ extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
  * derives the effects the scene needs: effects, reach_depth and occluders. */
 void rt_scene_prepare(rt_scene *s);
 
+/* The frame's mirror for rt_view_cull's mirror candidates: the first plane whose material
+ * reflects or transmits, with the prepared eye (eye_at) on its front side, when the scene needs
+ * reflected rays and its effects are not forced; -1 when there is none. */
+int rt_scene_mirror(const rt_scene *s);
+
+/* For the mirror plane `pl` (rt_scene_mirror) and sphere i: the sine of the half-angle of a
+ * cone of directions from eye_at around *l (set to the mirrored centre - eye_at) that holds the
+ * direction d of every primary ray from eye_at whose reflection off the front of the plane,
+ * as trace_secondary casts it from the ray's nearest hit there, the sphere test can find a hit
+ * on sphere i (the reasoning is in prepare.c); 0 when there is no such cone (then *l is 0). */
+real rt_scene_mirror_cone(const rt_scene *s, int pl, int i, vec3 *l);
+
 /* After rt_scene_prepare: turns every effect on (every light tested against every object, full
  * recursion), the generic path that effects on demand is measured against. */
 void rt_scene_force_effects(rt_scene *s);
@@ -326,8 +350,11 @@ dir3 rt_view_ray(const rt_view *v, int x, int y);
  * (rt_scene_prepare) with its eye_at at the view's eye: a sphere is left out of the tiles
  * where eye_cull would reject every primary ray (an over-estimate of its outline on the
  * image, by a margin above the rounding of either build), so rt_nearest_primary gives the
- * same results with the sets as without. Call it again whenever the scene or the view
- * changes; rt_view_init resets the sets to every object. */
+ * same results with the sets as without. Likewise the mirror candidates
+ * (rt_view_mirror_candidates, mirror_plane = rt_scene_mirror(s)): a sphere is left out of the
+ * tiles outside its rt_scene_mirror_cone, so rt_nearest_cand with them gives the reflected
+ * ray's rt_nearest_but result. Call it again whenever the scene or the view changes;
+ * rt_view_init resets the sets to every object (and mirror_plane to -1). */
 void rt_view_cull(rt_view *v, const rt_scene *s);
 
 /* Traces the primary ray through pixel (x, y) with at most p->depth bounces and p->min_contrib
@@ -372,6 +399,12 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 /* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one
  * mirrored off a plane's front, from the offset origin). */
 int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t);
+
+/* rt_nearest_but testing only the objects in `cand` (bit i: object i), in the objects' order:
+ * the same result when every object whose test could report a hit for this ray is in `cand`
+ * (rt_view_mirror_candidates for a reflection off the view's mirror plane). */
+int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, uint32_t cand,
+                    real *t);
 
 /* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
  * starts from the frame's eye_l and eye_cull, the plane test from eye_num. Only the objects

@@ -136,6 +136,30 @@ int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
     return rt_nearest_but(s, org, d, tmax, -1, t);
 }
 
+int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, uint32_t cand,
+                    real *t)
+{
+    int best = -1;
+    if (s->nobjects < 32)
+        cand &= ((uint32_t)1 << s->nobjects) - 1;
+    if (skip >= 0)
+        cand &= ~((uint32_t)1 << skip);
+    /* Set bits in increasing order: rt_nearest_but's order, so the same tmax at every test.
+     * The tests are rt_shapes' out-of-line copies (the same code): few objects are left to
+     * test, and the programs stay within their size limits. */
+    for (; cand; cand &= cand - 1) {
+        int i = __builtin_ctz(cand);
+        const rt_object *o = &s->objects[i];
+        real hit;
+        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
+            tmax = hit;
+            best = i;
+        }
+    }
+    *t = tmax;
+    return best;
+}
+
 int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
 {
     real tmax = R_T_MAX;

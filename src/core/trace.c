@@ -19,6 +19,11 @@ typedef struct trace_ctx {
     int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
     uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
+    /* The view's mirror plane when its candidates serve this pixel (the view's eye is the
+     * prepared one), else -1: a level-1 ray leaving that plane (`from`) is the reflection of
+     * the pixel's own primary ray, whose tests mirror_cand bounds (rt_view_mirror_candidates). */
+    int mirror;
+    uint32_t mirror_cand;
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -214,9 +219,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
 {
     const rt_scene *s = c->scene;
     real t;
-    int id = level > 0 || !c->eye_prepared ? rt_nearest_but(s, org, d, R_T_MAX, from, &t)
-        : TRACE_FIRST(c)                   ? trace_first(c, org, d, &t)
-                                           : rt_nearest_primary(s, d, c->primary_cand, &t);
+    int id;
+    if (level > 0 || !c->eye_prepared)
+        id = from == c->mirror && level == 1 && from >= 0
+            ? rt_nearest_cand(s, org, d, R_T_MAX, from, c->mirror_cand, &t)
+            : rt_nearest_but(s, org, d, R_T_MAX, from, &t);
+    else
+        id = TRACE_FIRST(c) ? trace_first(c, org, d, &t)
+                            : rt_nearest_primary(s, d, c->primary_cand, &t);
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level, c3_scale_p(s->background, weight));
         return s->background;
@@ -292,9 +302,8 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                                                               rt_stats *stats, rt_sample *out,
                                                               int probe, rt_primary *pri)
 {
-    int eye_prepared = RT_COMPILED_PROBE && pri
-        ? 2
-        : v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
+    int at_eye = v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
+    int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
     trace_ctx c = {.scene = s,
                    .stats = stats,
                    .sample = out,
@@ -304,7 +313,9 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .eye_prepared = eye_prepared,
                    .probe = probe,
                    .pri = pri,
-                   .primary_cand = rt_view_candidates(v, x, y)};
+                   .primary_cand = rt_view_candidates(v, x, y),
+                   .mirror = at_eye ? v->mirror_plane : -1,
+                   .mirror_cand = rt_view_mirror_candidates(v, x, y)};
     out->nhits = 0;
     out->cell = 0;
     out->lights = 0;
