@@ -19,11 +19,11 @@ typedef struct trace_ctx {
     int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
     uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
-    /* Adaptive mode, for the other tone's colour of a primary hit on a two-tone checker
-     * (rt_sample.alt, trace_alt_end): alt_on is set until the primary hit's lights are added,
-     * and alt_e gathers the factor of the diffuse colour in their terms. */
-    int alt_on;
-    rt_color alt_e;
+    /* Adaptive mode: alt 1 gives a primary hit on a plane with a two-tone checker its other
+     * tone's colour (rt_sample.alt): trace_alt_mid puts in alt_d what the other tone adds to
+     * its colour, and sets alt to 2. */
+    int alt;
+    rt_color alt_d;
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -93,48 +93,49 @@ typedef struct trace_hit {
     unit dn;       /* d . n (<= 0) */
     rt_color base; /* diffuse colour at p */
     const rt_material *m;
-    int id, inside; /* object hit; 1 when hit from behind */
+    int id, inside;          /* object hit; 1 when hit from behind */
+    real ndl[RT_MAX_LIGHTS]; /* light i's n . l, set by trace_light where it lights the point */
 } trace_hit;
 
-/* Adaptive mode, the lights of the primary hit (trace_ctx.alt_on): adds light colour x n.l, the
- * factor of the diffuse colour in this light's term, to alt_e. Out of line and compiled for size
- * (cold), as trace_alt_end: off the usual path. */
-static __attribute__((cold, noinline)) void trace_alt_add(trace_ctx *c, const rt_color *color,
-                                                          real ndl)
+/* Adaptive mode, a primary hit h on a two-tone checker (the sample's cell non-zero), its lights
+ * added (states `lights`): shading is linear in the diffuse colour b, whose factor E is the
+ * ambient term's (scene ambient x the material's ambient) plus light colour x n.l for each
+ * light that lights the point; the other tone b' then adds (b' - b) x E to the colour (up to
+ * rounding), whatever the highlights and the secondary rays add: into alt_d. E is within
+ * [0, 65] and |b' - b| <= 1 (docs/numerics.md, Colours): the products and sums are in range
+ * (the unchecked forms, *_in). Out of line: off the usual path. */
+static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hit *h,
+                                                    unsigned lights)
 {
-    c->alt_e = c3_madd_p(c->alt_e, *color, ndl);
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    rt_color e = c3_scale_p(s->ambient, m->ambient);
+    for (int l = 0; lights; l++, lights >>= 2)
+        if (lights & 3)
+            e = c3_madd_p(e, s->lights[l].color, h->ndl[l]);
+    const rt_color b2 = rt_cell_tone(c->sample->cell) ? m->diffuse : m->tex.color2;
+    c->alt_d = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
+                  r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
+                  r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
+    c->alt = 2;
 }
 
 /* Channel i (0 red, 1 green, 2 blue) of a colour. */
 static real trace_ch(const rt_color *v, int i) { return i == 0 ? v->x : i == 1 ? v->y : v->z; }
 
-/* The other tone (rt_sample.alt) of a sample whose primary hit lies on a two-tone checker (its
- * cell non-zero), given its whole colour col: shading is linear in the diffuse colour b, whose
- * factor is the ambient term's (scene ambient x the material's ambient) plus alt_e, so the other
- * tone's colour is col + (b' - b) x that factor (up to rounding); the specular terms and the
- * secondary rays do not depend on b. col is within [0, 1161], the factor within [0, 65] and
- * |b' - b| <= 1 (docs/numerics.md, Colours): every product and sum is in range (the unchecked
- * forms, *_in). */
-static __attribute__((cold, noinline)) void trace_alt_end(trace_ctx *c, rt_color col)
+/* The sample's other tone (rt_sample.alt) from its colour col and trace_alt_mid's alt_d. */
+static __attribute__((cold, noinline)) void trace_alt_end(const trace_ctx *c, rt_color col)
 {
     rt_sample *sm = c->sample;
-    const rt_scene *s = c->scene;
-    const rt_material *m = &s->materials[s->objects[sm->hits[0].object].material];
-    const int tone = rt_cell_tone(sm->cell);
-    const rt_color *b = tone ? &m->tex.color2 : &m->diffuse;
-    const rt_color *b2 = tone ? &m->diffuse : &m->tex.color2;
-    for (int i = 0; i < 3; i++) {
-        real e = r_add_in(trace_ch(&c->alt_e, i), r_mul_in(trace_ch(&s->ambient, i), m->ambient));
-        real d = r_add_in(trace_ch(b2, i), r_neg_in(trace_ch(b, i)));
-        sm->alt[i] = r_to_byte(r_add_in(trace_ch(&col, i), r_mul_in(d, e)));
-    }
+    for (int i = 0; i < 3; i++)
+        sm->alt[i] = r_to_byte(r_add_in(trace_ch(&col, i), trace_ch(&c->alt_d, i)));
     sm->alt_known = 1;
 }
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
  * unlit, 1 lit, 2 highlight). Out of line on ARM (RT_OUT_OF_LINE): the caller's loop then keeps
  * less in registers. */
-static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i, rt_color *col)
+static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_color *col)
 {
     /* The hit's fields are read where they are used (not copied up front): most lights are
      * behind the surface or shadowed and need only p and n. */
@@ -180,9 +181,8 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
     }
     const rt_material *m = h->m;
     rt_color acc = c3_madd_p(*col, c3_mul_p(li->color, h->base), u_to_real(ndl)); /* Lambert */
-    /* the factor of the diffuse colour, for a checker's other tone (the primary hit's lights) */
-    if (RT_COMPILED_CELLS && c->alt_on)
-        trace_alt_add(c, &li->color, u_to_real(ndl));
+    if (RT_COMPILED_CELLS) /* for a checker's other tone (trace_alt_mid) */
+        h->ndl[i] = u_to_real(ndl);
     uint8_t state = 1;
     if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
         /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
@@ -310,9 +310,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     unsigned lights = 0;
     for (int i = 0; i < nlights; i++)
         lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
-    c->alt_on = 0; /* the primary hit's lights are added: alt_e is complete */
-    if (level == 0)
+    if (level == 0) {
         c->sample->lights = (uint8_t)lights;
+        if (RT_COMPILED_CELLS && c->alt && cell && (s->plane_set >> id & 1))
+            trace_alt_mid(c, &h, lights); /* a plane with a two-tone checker */
+    }
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
     trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
 
@@ -353,7 +355,7 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .probe = probe,
                    .pri = pri,
                    .primary_cand = rt_view_candidates(v, x, y),
-                   .alt_on = alt};
+                   .alt = alt};
     out->nhits = 0;
     out->alt_known = 0;
     out->cell = 0;
@@ -370,7 +372,7 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
         stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     out->color = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
-    if (alt && out->cell) /* the primary hit lies on a two-tone checker (or a ball's) */
+    if (RT_COMPILED_CELLS && c.alt == 2) /* the primary hit: a plane with a two-tone checker */
         trace_alt_end(&c, out->color);
 }
 
