@@ -460,12 +460,12 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         st->squares[li]++;
         const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
-        if (RT_COMPILED_CELLS && why == RT_SPLIT_OBJECT && sm->cell &&
-            ss_cells(c, sm, x0, y0, w, h, own)) {
-            st->texture_squares++;
-            return;
-        }
         if (why != RT_SPLIT_NONE) {
+            if (RT_COMPILED_CELLS && why == RT_SPLIT_OBJECT && sm->cell &&
+                ss_cells(c, sm, x0, y0, w, h, own)) {
+                st->texture_squares++; /* filled by cell instead */
+                return;
+            }
             st->split[li]++;
             st->split_by[why]++;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;

@@ -19,11 +19,9 @@ typedef struct trace_ctx {
     int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
     uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
-    /* Adaptive mode: alt 1 gives a primary hit on a plane with a two-tone checker its other
-     * tone's colour (rt_sample.alt): trace_alt_mid puts in alt_d what the other tone adds to
-     * its colour, and sets alt to 2. */
+    /* Adaptive mode: 1 gives a primary hit on a plane with a two-tone checker its other tone's
+     * colour (rt_sample.alt, trace_alt_mid) */
     int alt;
-    rt_color alt_d;
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -101,7 +99,8 @@ typedef struct trace_hit {
  * added (states `lights`): shading is linear in the diffuse colour b, whose factor E is the
  * ambient term's (scene ambient x the material's ambient) plus light colour x n.l for each
  * light that lights the point; the other tone b' then adds (b' - b) x E to the colour (up to
- * rounding), whatever the highlights and the secondary rays add: into alt_d. E is within
+ * rounding), whatever the highlights and the secondary rays add. That goes into the sample's
+ * colour, with alt_known 1, until trace_point has the colour itself (trace_alt_end). E is within
  * [0, 65] and |b' - b| <= 1 (docs/numerics.md, Colours): the products and sums are in range
  * (the unchecked forms, *_in). Out of line: off the usual path. */
 static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hit *h,
@@ -114,22 +113,20 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
         if (lights & 3)
             e = c3_madd_p(e, s->lights[l].color, h->ndl[l]);
     const rt_color b2 = rt_cell_tone(c->sample->cell) ? m->diffuse : m->tex.color2;
-    c->alt_d = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
-                  r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
-                  r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
-    c->alt = 2;
+    rt_sample *sm = c->sample;
+    sm->color = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
+                   r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
+                   r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
+    sm->alt_known = 1;
 }
 
-/* Channel i (0 red, 1 green, 2 blue) of a colour. */
-static real trace_ch(const rt_color *v, int i) { return i == 0 ? v->x : i == 1 ? v->y : v->z; }
-
-/* The sample's other tone (rt_sample.alt) from its colour col and trace_alt_mid's alt_d. */
-static __attribute__((cold, noinline)) void trace_alt_end(const trace_ctx *c, rt_color col)
+/* The sample's other tone (rt_sample.alt) from its colour col and what the other tone adds,
+ * which trace_alt_mid left in its colour (within [-65, 65]: the sum is in range). */
+static __attribute__((cold, noinline)) void trace_alt_end(rt_sample *sm, rt_color col)
 {
-    rt_sample *sm = c->sample;
-    for (int i = 0; i < 3; i++)
-        sm->alt[i] = r_to_byte(r_add_in(trace_ch(&col, i), trace_ch(&c->alt_d, i)));
-    sm->alt_known = 1;
+    sm->alt[0] = r_to_byte(r_add_in(col.x, sm->color.x));
+    sm->alt[1] = r_to_byte(r_add_in(col.y, sm->color.y));
+    sm->alt[2] = r_to_byte(r_add_in(col.z, sm->color.z));
 }
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
@@ -371,9 +368,10 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     if (!probe)
         stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
-    if (RT_COMPILED_CELLS && c.alt == 2) /* the primary hit: a plane with a two-tone checker */
-        trace_alt_end(&c, out->color);
+    rt_color col = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
+    if (RT_COMPILED_CELLS && out->alt_known) /* the primary hit: a plane with a two-tone checker */
+        trace_alt_end(out, col);
+    out->color = col;
 }
 
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
