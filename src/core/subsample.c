@@ -397,48 +397,45 @@ static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *
             return 0;
         ss_fill(t ? other : dst, t ? RT_GRID_MAX + 1 : c->stride, w, h, cols, rows, kc);
     }
-    /* Each pixel's cell: looked up at even (i, j) first, then at the others only where their
-     * looked-up neighbours on either side (left and right, above and below, or the four
-     * diagonal ones) are not all in one cell. A cell is a convex square on the plane, and so is
-     * its image: a pixel between two of its pixels lies in it. (Cell ids repeat every four
-     * cells along each axis: cells so small that neighbours two pixels apart are four cells
-     * apart have tones no picture resolves.) */
+    /* Each pixel's cell, coarse to fine over the square's lattice (its pixels, and its right
+     * column and bottom row for their neighbours): looked up at the points whose coordinates
+     * are multiples of 4, then at the multiples of 2 and of 1 in turn only where the points a
+     * step away on either side (left and right, above and below, or the four diagonal ones)
+     * are not all in one cell. A cell is a convex square on the plane, and so is its image: a
+     * point between two of its points lies in it. (Cell ids repeat every four cells along each
+     * axis: cells so small that points four pixels apart are four cells apart have tones no
+     * picture resolves.) Points traced before keep their colour and give their cell. */
     const rt_material *m = &s->materials[s->objects[id].material];
     const int cs = RT_GRID_MAX + 1;
     uint8_t cid[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
-    for (int pass = 0; pass < 2; pass++)
-        for (int j = 0; j < rows; j++) {
-            const rt_sample *row = sm + j * c->lstride;
-            uint32_t *px = dst + (long)j * c->stride;
-            for (int i = 0; i < cols; i++) {
+    for (int d = 4; d >= 1; d >>= 1)
+        for (int j = 0; j <= h; j += d)
+            for (int i = 0; i <= w; i += d) {
+                int mine = i < cols && j < rows;
+                if ((d < 4 && !((i | j) & d)) || (d == 1 && !mine))
+                    continue; /* done at a coarser step, or nobody's neighbour */
                 uint8_t *q = &cid[j * cs + i];
-                int even = !(i & 1) && !(j & 1);
-                if (row[i].nhits) { /* a point traced before (a corner, on the top or left edge) */
-                    if (pass == 0) {
-                        *q = row[i].hits[0].object == id ? row[i].cell : 0;
-                        px[i] = ss_pixel(&row[i].color);
-                    }
+                const rt_sample *pt = sm + j * c->lstride + i;
+                if (pt->nhits) { /* a corner, or a point on the top or left edge */
+                    *q = pt->hits[0].object == id ? pt->cell : 0;
+                    if (mine)
+                        dst[(long)j * c->stride + i] = ss_pixel(&pt->color);
                     continue;
                 }
-                if (even != (pass == 0))
-                    continue;
                 int cell = 0;
-                if (!even) { /* the neighbours either side, if both are in the square */
-                    int di = i & 1, dj = j & 1;
-                    if (i + di < cols && j + dj < rows) {
-                        int a = q[-di - dj * cs], b = q[di + dj * cs];
-                        if (di && dj && (q[di - cs] != a || q[cs - di] != a))
-                            a = 0; /* the other diagonal */
-                        cell = a == b ? a : 0;
-                    }
+                const int di = i & d, dj = j & d; /* d or 0: the neighbours' offsets */
+                if (d < 4 && i + di <= w && j + dj <= h) {
+                    int a = q[-di - dj * cs], b = q[di + dj * cs];
+                    if (di && dj && (q[di - dj * cs] != a || q[dj * cs - di] != a))
+                        a = 0; /* the other diagonal */
+                    cell = a == b ? a : 0;
                 }
                 if (!cell)
                     cell = ss_cell_at(c, m, id, x0 + i, y0 + j);
                 *q = (uint8_t)cell;
-                if (cell && rt_cell_tone((uint8_t)cell))
-                    px[i] = other[j * cs + i];
+                if (mine && cell && rt_cell_tone((uint8_t)cell))
+                    dst[(long)j * c->stride + i] = other[j * cs + i];
             }
-        }
     return 1;
 }
 
