@@ -894,7 +894,8 @@ static void test_min_contrib(void **state)
 /* A checkerboard whose two colours are equal has no cell edges to find: adaptive and probe
  * renders of the shadow scene (its ball a two-tone checker) with such a floor trace the same
  * points and give the same pixels as with a plain floor; with two colours, the floor's cell
- * edges are split (more points traced). */
+ * edges are split in probe mode (more points traced) and filled by cell in adaptive mode
+ * (texture squares, test_checker_cells). */
 static void test_one_tone_checker(void **state)
 {
     (void)state;
@@ -931,8 +932,93 @@ static void test_one_tone_checker(void **state)
         print_message("mode %d: %lu points traced with a plain or one-tone checker floor, %lu with "
                       "two tones\n",
                       mode, (unsigned long)s1.rays_primary, (unsigned long)s2.rays_primary);
-        assert_true(s2.rays_primary > s1.rays_primary);
+        assert_int_equal(s1.texture_squares, 0);
+        if (mode == RT_MODE_PROBE)
+            assert_true(s2.rays_primary > s1.rays_primary);
+        else
+            assert_true(s2.texture_squares > 0);
     }
+}
+
+/* Texture squares: a two-tone checker floor under one light (nothing casts a shadow). Adaptive
+ * mode fills a square whose corners differ only in their cells pixel by pixel, each pixel with
+ * the corners' colours for its own cell's tone, instead of splitting it down to single pixels
+ * along every cell edge. Compared with full mode and with the old splitting (which the renderer
+ * falls back to when the view's eye is not the prepared one: eye_at moved away). */
+static void test_checker_cells(void **state)
+{
+    (void)state;
+    static rt_scene s, split, plain;
+    static uint32_t px_split[H * W];
+    scene_base(&s);
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.85, 0.8, 0.7), .ambient = from_d(0.4)});
+    s.materials[mf].tex =
+        (rt_texture){.kind = RT_TEX_CHECKER, .scale = from_d(0.5), .color2 = vd(0.1, 0.2, 0.45)};
+    add_floor(&s, mf);
+    s.lights[0].pos = vd(1, 12, -4);
+    s.camera = (rt_camera){vd(0, 5, 5), vd(0, 0, -1), vd(0, 1, 0), from_d(50)}; /* no horizon */
+    rt_scene_prepare(&s);
+    assert_int_equal(s.materials[mf].tex.cells, 1);
+    plain = s; /* the same floor without its checker */
+    plain.materials[mf].tex.kind = RT_TEX_NONE;
+    rt_scene_prepare(&plain);
+    split = s;
+    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL};
+    const rt_params pa = {
+        .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
+    rt_stats sf = {0}, sa = {0}, ss = {0};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            rt_trace_pixel(&s, &v, &pf, x, y, &sf, &full[y][x]);
+    rt_render(&s, &v, &pf, fullpx, W, &sf, NULL, NULL);
+    rt_render(&s, &v, &pa, adpx, W, &sa, work, traced);
+    rt_render(&split, &v, &pa, px_split, W, &ss, work, NULL);
+    rt_stats sp = {0};
+    rt_render(&plain, &v, &pa, px_split, W, &sp, work, NULL);
+    int worst = 0, pairs = 0, looked_up = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            for (int ch = 0; ch < 24; ch += 8) {
+                int d = (int)(adpx[y * W + x] >> ch & 255) - (int)(fullpx[y * W + x] >> ch & 255);
+                worst = d < 0 ? (-d > worst ? -d : worst) : (d > worst ? d : worst);
+            }
+            /* a cell edge between x and x + 1 (full mode's cells) where the tones lie far apart
+             * (40 levels or more in some channel): counted, and whether both pixels were looked
+             * up (a pixel off by more than the bound below took the wrong tone) */
+            if (x + 1 < W && full[y][x].cell && full[y][x + 1].cell &&
+                rt_cell_tone(full[y][x].cell) != rt_cell_tone(full[y][x + 1].cell)) {
+                int contrast = 0;
+                for (int ch = 0; ch < 24; ch += 8) {
+                    int d = (int)(fullpx[y * W + x] >> ch & 255) -
+                        (int)(fullpx[y * W + x + 1] >> ch & 255);
+                    contrast =
+                        d < 0 ? (-d > contrast ? -d : contrast) : (d > contrast ? d : contrast);
+                }
+                if (contrast < 40) /* (under the highlight both tones are near white) */
+                    continue;
+                pairs++;
+                looked_up += !traced[y * W + x] && !traced[y * W + x + 1];
+            }
+        }
+    print_message("checker cells: %lu points traced (%lu with the cells split, %lu on a plain "
+                  "floor, %lu in full), %lu squares filled by cell, %lu pixels looked up; %d "
+                  "cell-edge pairs, %d of them looked up on both sides; worst pixel %d levels "
+                  "from full mode's\n",
+                  (unsigned long)sa.rays_primary, (unsigned long)ss.rays_primary,
+                  (unsigned long)sp.rays_primary, (unsigned long)sf.rays_primary / 2,
+                  (unsigned long)sa.texture_squares, (unsigned long)sa.texture_pixels, pairs,
+                  looked_up, worst);
+    assert_int_equal(ss.texture_squares, 0);
+    assert_true(sa.texture_squares > 0 && sa.texture_pixels > 0);
+    /* far fewer points traced than with the cells split: as few as on a plain floor */
+    assert_true(sa.rays_primary * 8 <= ss.rays_primary);
+    assert_true(sa.rays_primary <= sp.rays_primary + sp.rays_primary / 8);
+    assert_true(pairs >= 100);
+    assert_true(looked_up * 4 >= pairs * 3); /* most edges are no longer traced */
+    assert_true(worst <= 6); /* and each pixel took its own cell's tone (40 levels apart) */
 }
 
 int main(void)
@@ -949,6 +1035,7 @@ int main(void)
         cmocka_unit_test(test_bands_into),
         cmocka_unit_test(test_min_contrib),
         cmocka_unit_test(test_one_tone_checker),
+        cmocka_unit_test(test_checker_cells),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),

@@ -204,7 +204,7 @@ typedef struct rt_hit_rec {
 } rt_hit_rec;
 
 /* Everything traced for one image point: the record adaptive subsampling compares. Kept
- * small (56 bytes) because a row of squares' worth of them is the working storage. */
+ * small (60 bytes) because a row of squares' worth of them is the working storage. */
 typedef struct rt_sample {
     rt_color color;
     uint8_t nhits;  /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
@@ -212,7 +212,21 @@ typedef struct rt_sample {
     uint8_t cell;   /* texture cell at the primary hit (checker), 0 for other textures */
     uint8_t flags;  /* probe mode: RT_SAMPLE_PROBED, RT_SAMPLE_OPAQUE (0 in other modes) */
     rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
+    /* alt_known 1 (adaptive mode, a primary hit on a two-tone checker seen from the prepared
+     * eye): alt is the colour the point would have in a cell of the other colour (the same
+     * lights, highlights and secondary rays, the other diffuse colour) as the bytes of a pixel
+     * (r_to_byte of each channel: red, green, blue); else 0. */
+    uint8_t alt[3];
+    uint8_t alt_known;
 } rt_sample;
+
+/* The colour of a checker cell (rt_sample.cell, non-zero): 1 for the texture's color2, 0 for
+ * the diffuse colour (the parity of the cell's coordinates, rt_texture_color). */
+static inline int rt_cell_tone(uint8_t cell)
+{
+    unsigned c = (unsigned)cell - 1;
+    return (int)((c ^ c >> 2 ^ c >> 4) & 1);
+}
 
 #if RT_MAX_LIGHTS > 4
 #error "rt_sample.lights holds the states of at most 4 lights"
@@ -282,6 +296,9 @@ typedef struct rt_stats {
     uint32_t probes;                   /* probe mode: points probed (rt_probe_pixel) */
     uint32_t probe_shadow;             /* probe mode: shadow rays cast by the probes */
     uint32_t probe_secondary;          /* probe mode: reflected and refracted probe rays */
+    uint32_t texture_squares; /* adaptive: squares split only by checker cells, filled instead
+                                 with the cell of each pixel (subsample.c) */
+    uint32_t texture_pixels;  /* adaptive: pixels of those squares whose cell was looked up */
 } rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the

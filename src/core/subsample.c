@@ -327,6 +327,118 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
     row[stride + 1] = ss_pixel(&m[1].color);
 }
 
+/* The cell (rt_sample.cell) of the checker of material m on plane `id` at pixel (x, y): the
+ * primary ray and its hit on the plane as the tracer forms them (rt_view_ray,
+ * rt_nearest_primary, the point along the ray), so the same cell as a full shade finds; 0 for a
+ * ray that misses the plane (a corner's neighbour, by rounding). Counted in texture_pixels. */
+static __attribute__((cold, noinline)) uint8_t ss_cell_at(ss_ctx *c, const rt_material *m, int id,
+                                                          int x, int y)
+{
+    const rt_view *v = c->view;
+    c->stats->texture_pixels++;
+    dir3 d = rt_view_ray(v, x, y);
+    real t;
+    uint8_t cell = 0;
+    if (rt_nearest_primary(c->scene, d, (uint32_t)1 << id, &t) == id)
+        rt_texture_color(m, v3_along_in(v->eye, d, t), 0, 0, c->stats, &cell);
+    return cell;
+}
+
+/* A square that rt_corners_differ would split for its primary object (RT_SPLIT_OBJECT), k[] its
+ * corners (sm: its (0, 0) in the lattice): when the corners lie on one plane whose material is a
+ * two-tone checker and differ only in their cells, the square is not split as long as the
+ * corners agree for either tone: with each corner's cell made the same and its primary node's
+ * contribution made its whole colour in that tone (its own colour, or rt_sample.alt for the
+ * other tone), rt_corners_differ finds no difference (light states, ray tree, secondary
+ * contributions, and those colours within the threshold). Shading is linear in the diffuse
+ * colour, so each pixel then gets the bilinear interpolation (ss_fill) of the corners' colours
+ * in the tone of its own cell, looked up where its primary ray meets the plane (ss_tone_at: a
+ * ray and a plane test instead of a full shade). Returns 1 when it filled the pixels the square
+ * owns (as ss_fill: `cols` x `rows`; points traced before keep their colour), 0 to split.
+ * Out of line and compiled for size (cold): its time goes to ss_tone_at's calls. */
+static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, int y0,
+                                                    int w, int h, int own)
+{
+    const rt_scene *s = c->scene;
+    const int id = sm->hits[0].object, cols = w + (own & 1), rows = h + (own >> 1 & 1);
+    if (id == RT_NO_OBJECT || !(s->plane_set >> id & 1))
+        return 0;
+    /* tc[tone][corner]: the corners' colours in either tone, in [0, 1] */
+    rt_color tc[2][4];
+    rt_sample kk[4];
+    const rt_sample *kp[4];
+    for (int i = 0; i < 4; i++) {
+        const rt_sample *q = sm + (i >> 1) * h * c->lstride + (i & 1) * w; /* corner i */
+        if (!q->alt_known) /* its other tone's colour is known */
+            return 0;
+        int t = rt_cell_tone(q->cell);
+        tc[t][i] = q->color;
+        /* a byte b as the colour b / 255 (b 257 / 2^16 is within 2^-16 of it) */
+        tc[!t][i] = v3(r_from_q16(q->alt[0] * 257), r_from_q16(q->alt[1] * 257),
+                       r_from_q16(q->alt[2] * 257));
+        kk[i] = *q;
+        kk[i].cell = 1;
+        kp[i] = &kk[i];
+    }
+    /* tone 0 into the frame, tone 1 aside (a split square's pixels are all written again by its
+     * parts); each pixel then takes its own cell's */
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
+    uint32_t other[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    for (int t = 0; t < 2; t++) {
+        const rt_color *kc[4];
+        for (int i = 0; i < 4; i++) {
+            uint32_t px = ss_pixel(&tc[t][i]);
+            kk[i].hits[0].contrib[0] = (uint8_t)(px >> 16);
+            kk[i].hits[0].contrib[1] = (uint8_t)(px >> 8);
+            kk[i].hits[0].contrib[2] = (uint8_t)px;
+            kc[i] = &tc[t][i];
+        }
+        if (rt_corners_differ(kp, c->thr8) != RT_SPLIT_NONE)
+            return 0;
+        ss_fill(t ? other : dst, t ? RT_GRID_MAX + 1 : c->stride, w, h, cols, rows, kc);
+    }
+    /* Each pixel's cell, coarse to fine over the square's lattice (its pixels, and its right
+     * column and bottom row for their neighbours): looked up at the points whose coordinates
+     * are multiples of 4, then at the multiples of 2 and of 1 in turn only where the points a
+     * step away on either side (left and right, above and below, or the four diagonal ones)
+     * are not all in one cell. A cell is a convex square on the plane, and so is its image: a
+     * point between two of its points lies in it. (Cell ids repeat every four cells along each
+     * axis: cells so small that points four pixels apart are four cells apart have tones no
+     * picture resolves.) Points traced before keep their colour and give their cell. */
+    const rt_material *m = &s->materials[s->objects[id].material];
+    const int cs = RT_GRID_MAX + 1;
+    uint8_t cid[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    for (int d = 4; d >= 1; d >>= 1)
+        for (int j = 0; j <= h; j += d)
+            for (int i = 0; i <= w; i += d) {
+                int mine = i < cols && j < rows;
+                if ((d < 4 && !((i | j) & d)) || (d == 1 && !mine))
+                    continue; /* done at a coarser step, or nobody's neighbour */
+                uint8_t *q = &cid[j * cs + i];
+                const rt_sample *pt = sm + j * c->lstride + i;
+                if (pt->nhits) { /* a corner, or a point on the top or left edge */
+                    *q = pt->hits[0].object == id ? pt->cell : 0;
+                    if (mine)
+                        dst[(long)j * c->stride + i] = ss_pixel(&pt->color);
+                    continue;
+                }
+                int cell = 0;
+                const int di = i & d, dj = j & d; /* d or 0: the neighbours' offsets */
+                if (d < 4 && i + di <= w && j + dj <= h) {
+                    int a = q[-di - dj * cs], b = q[di + dj * cs];
+                    if (di && dj && (q[di - dj * cs] != a || q[dj * cs - di] != a))
+                        a = 0; /* the other diagonal */
+                    cell = a == b ? a : 0;
+                }
+                if (!cell)
+                    cell = ss_cell_at(c, m, id, x0 + i, y0 + j);
+                *q = (uint8_t)cell;
+                if (mine && cell && rt_cell_tone((uint8_t)cell))
+                    dst[(long)j * c->stride + i] = other[j * cs + i];
+            }
+    return 1;
+}
+
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
  * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
  * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
@@ -346,6 +458,10 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
         if (why != RT_SPLIT_NONE) {
+            if (why == RT_SPLIT_OBJECT && sm->cell && ss_cells(c, sm, x0, y0, w, h, own)) {
+                st->texture_squares++; /* filled by cell instead */
+                return;
+            }
             st->split[li]++;
             st->split_by[why]++;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;

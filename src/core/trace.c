@@ -24,6 +24,9 @@ typedef struct trace_ctx {
      * the pixel's own primary ray, whose tests mirror_cand bounds (rt_view_mirror_candidates). */
     int mirror;
     uint32_t mirror_cand;
+    /* Adaptive mode: 1 gives a primary hit on a plane with a two-tone checker its other tone's
+     * colour (rt_sample.alt, trace_alt_mid) */
+    int alt;
 } trace_ctx;
 
 /* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
@@ -93,13 +96,48 @@ typedef struct trace_hit {
     unit dn;       /* d . n (<= 0) */
     rt_color base; /* diffuse colour at p */
     const rt_material *m;
-    int id, inside; /* object hit; 1 when hit from behind */
+    int id, inside;          /* object hit; 1 when hit from behind */
+    real ndl[RT_MAX_LIGHTS]; /* light i's n . l, set by trace_light where it lights the point */
 } trace_hit;
+
+/* Adaptive mode, a primary hit h on a two-tone checker (the sample's cell non-zero), its lights
+ * added (states `lights`): shading is linear in the diffuse colour b, whose factor E is the
+ * ambient term's (scene ambient x the material's ambient) plus light colour x n.l for each
+ * light that lights the point; the other tone b' then adds (b' - b) x E to the colour (up to
+ * rounding), whatever the highlights and the secondary rays add. That goes into the sample's
+ * colour, with alt_known 1, until trace_point has the colour itself (trace_alt_end). E is within
+ * [0, 65] and |b' - b| <= 1 (docs/numerics.md, Colours): the products and sums are in range
+ * (the unchecked forms, *_in). Out of line: off the usual path. */
+static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hit *h,
+                                                    unsigned lights)
+{
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    rt_color e = c3_scale_p(s->ambient, m->ambient);
+    for (int l = 0; lights; l++, lights >>= 2)
+        if (lights & 3)
+            e = c3_madd_p(e, s->lights[l].color, h->ndl[l]);
+    const rt_color b2 = rt_cell_tone(c->sample->cell) ? m->diffuse : m->tex.color2;
+    rt_sample *sm = c->sample;
+    sm->color = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
+                   r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
+                   r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
+    sm->alt_known = 1;
+}
+
+/* The sample's other tone (rt_sample.alt) from its colour col and what the other tone adds,
+ * which trace_alt_mid left in its colour (within [-65, 65]: the sum is in range). */
+static __attribute__((cold, noinline)) void trace_alt_end(rt_sample *sm, rt_color col)
+{
+    sm->alt[0] = r_to_byte(r_add_in(col.x, sm->color.x));
+    sm->alt[1] = r_to_byte(r_add_in(col.y, sm->color.y));
+    sm->alt[2] = r_to_byte(r_add_in(col.z, sm->color.z));
+}
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
  * unlit, 1 lit, 2 highlight). Out of line on ARM (RT_OUT_OF_LINE): the caller's loop then keeps
  * less in registers. */
-static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int i, rt_color *col)
+static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_color *col)
 {
     /* The hit's fields are read where they are used (not copied up front): most lights are
      * behind the surface or shadowed and need only p and n. */
@@ -145,6 +183,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
     }
     const rt_material *m = h->m;
     rt_color acc = c3_madd_p(*col, c3_mul_p(li->color, h->base), u_to_real(ndl)); /* Lambert */
+    h->ndl[i] = u_to_real(ndl); /* for a checker's other tone (trace_alt_mid) */
     uint8_t state = 1;
     if (rt_scene_has(s, RT_FX_SPECULAR) && m->specular > 0) {
         /* Phong: (v . r)^h with v toward the eye, r the light mirrored in n */
@@ -277,8 +316,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     unsigned lights = 0;
     for (int i = 0; i < nlights; i++)
         lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
-    if (level == 0)
+    if (level == 0) {
         c->sample->lights = (uint8_t)lights;
+        if (c->alt && cell && (s->plane_set >> id & 1))
+            trace_alt_mid(c, &h, lights); /* a plane with a two-tone checker */
+    }
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
     trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
 
@@ -304,6 +346,10 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
 {
     int at_eye = v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
     int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
+    /* adaptive mode (probe mode is adaptive where it is not compiled in), from the prepared eye
+     * (the primary hit as ss_cells finds it again, with rt_nearest_primary) */
+    const int alt = eye_prepared == 1 && p->mode != RT_MODE_FULL &&
+        !(RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE);
     trace_ctx c = {.scene = s,
                    .stats = stats,
                    .sample = out,
@@ -315,8 +361,10 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .pri = pri,
                    .primary_cand = rt_view_candidates(v, x, y),
                    .mirror = at_eye ? v->mirror_plane : -1,
-                   .mirror_cand = rt_view_mirror_candidates(v, x, y)};
+                   .mirror_cand = rt_view_mirror_candidates(v, x, y),
+                   .alt = alt};
     out->nhits = 0;
+    out->alt_known = 0;
     out->cell = 0;
     out->lights = 0;
     dir3 d;
@@ -330,7 +378,10 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     if (!probe)
         stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    out->color = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
+    rt_color col = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
+    if (out->alt_known) /* the primary hit: a plane with a two-tone checker */
+        trace_alt_end(out, col);
+    out->color = col;
 }
 
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
