@@ -271,7 +271,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
     uint64_t xs = sum << k;
     uint64_t r = fx_rsqrt64(xs);
     int t = k == 2;
-    uint64_t half = (uint64_t)1 << (31 + t);
+    uint64_t half = (uint64_t)(1 + t) << 31; /* 2^(31 + t): constant shifts */
     int32_t rl = (int32_t)(uint32_t)r;
     uint32_t rh = (uint32_t)(r >> 32) + ((uint32_t)r >> 31);
     d.x = fx_mul_r(sx, rl, rh, half, t);
@@ -282,7 +282,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
          * l in [2^29, 2^31], to about a unit: (xs / 2^32) (r / 2) / 2^(30 + k/2), halved and
          * rounded, i.e. (product + 2^(30 + k/2)) / 2^(31 + k/2), taken as the high word shifted
          * by 1 - t. |v| = l * 2^-s in units of 2^-frac; as Q16.16 that is l * 2^(16 - frac - s). */
-        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)1 << (32 - t)); /* below 2^63 */
+        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)(2 - t) << 31); /* below 2^63 */
         uint32_t l = (uint32_t)(pl >> 32) >> (1 - t);
         int sh = 16 - frac - s;
         if (sh >= 32)

@@ -776,15 +776,17 @@ static inline vec3 d3_scale_in(dir3 d, real s)
 /* v3_dot_d_in(v3_sub_in(c, l), d) in two parts, for one ray d against many points c:
  * part = v3_dot_part(l, d) once, then v3_dot_d_from(c, d, part) per point. The same value:
  * the unrounded sums c . d - l . d and (c - l) . d are equal (in-scene c and l: each sum
- * below 2^61). */
+ * below 2^61). The part holds the rounding's half too, 2^(F-1) - l . d, so that each point's
+ * dot product accumulates onto it (smlal on ARM) and is rounded by the shift alone. */
 typedef int64_t dotpart;
 static inline dotpart v3_dot_part(vec3 l, dir3 d)
 {
-    return (int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z;
+    return ((int64_t)1 << (FX_UF - 1)) -
+        ((int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z);
 }
 static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
 {
-    int64_t s = (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z - part;
-    return (real)fx_round_shift(s, FX_UF);
+    int64_t s = part + (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z;
+    return (real)(s >> FX_UF);
 }
 #endif

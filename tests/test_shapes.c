@@ -282,7 +282,7 @@ static void test_shadow_cull(void **state)
             continue;
         int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
         rt_stats st = {0};
-        int got = rt_occluded(&s, &st, 0, 1, p_out, l, seg);
+        int got = rt_occluded(&s, &st, 0, 1, &p_out, &l, seg);
         if (got != want)
             fail_msg("rt_occluded %d, sphere test %d (case %d, r %g, q at %g of the centre)", got,
                      want, i, r, rq);
@@ -416,8 +416,8 @@ static void test_shadow_bound(void **state)
             continue;
         uint32_t all = ((uint32_t)1 << s.nobjects) - 1;
         rt_stats st = {0}, st_plain = {0};
-        int got = rt_occluded(&s, &st, 0, all, p_out, l, seg);
-        int want = rt_occluded(&plain, &st_plain, 0, all, p_out, l, seg);
+        int got = rt_occluded(&s, &st, 0, all, &p_out, &l, seg);
+        int want = rt_occluded(&plain, &st_plain, 0, all, &p_out, &l, seg);
         if (got != want)
             fail_msg("with the bound %d, without %d (case %d, %d spheres)", got, want, i,
                      s.nobjects);

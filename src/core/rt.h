@@ -382,8 +382,8 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t);
 /* Does any object of the set `occ` (bit i: object i) block the shadow ray toward light
  * `light`, the segment from org along d of length dist? Counts the objects tested in
  * st->shadow_tests. */
-int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
-                real dist);
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const vec3 *org,
+                const dir3 *d, real dist);
 
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably

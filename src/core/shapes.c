@@ -116,16 +116,23 @@ static RT_OUT_OF_LINE int shapes_plane(const rt_object *o, const vec3 *org, cons
 int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
 {
     int best = -1;
+    /* a sphere's tca = (c - org) . d as c . d against the ray's part (v3_dot_part): l = c - org
+     * is formed only for the spheres sphere_hit's first test does not reject */
+    const dotpart od = v3_dot_part(org, d);
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
         if (i == skip)
             continue;
-        if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
-                                 : shapes_plane(o, &org, &d, tmax, &hit)) {
-            tmax = hit;
-            best = i;
+        if (o->kind == RT_SPHERE) {
+            real tca = v3_dot_d_from(o->center, d, od);
+            if (tca < o->behind || !sphere_hit(o, v3_sub_in(o->center, org), tca, d, tmax, &hit))
+                continue;
+        } else if (!shapes_plane(o, &org, &d, tmax, &hit)) {
+            continue;
         }
+        tmax = hit;
+        best = i;
     }
     *t = tmax;
     return best;
@@ -215,30 +222,32 @@ static RT_OUT_OF_LINE int shapes_blocks(const rt_object *o, const vec3 *org, con
                                 : plane_intersect(o, *org, *d, dist, &hit);
 }
 
-int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
-                real dist)
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const vec3 *org,
+                const dir3 *d, real dist)
 {
-    const dotpart lpd = v3_dot_part(s->lights[light].pos, d);
+    const dir3 dd = *d;
+    const dotpart lpd = v3_dot_part(s->lights[light].pos, dd);
     const rcull *cull = s->shadow_cull[light];
     uint32_t tested = 0;
     int blocked = 0;
     /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
     rcull kb = s->bound_shadow_cull[light];
     if (kb != 0 && (occ & s->bound_set) &&
-        r_cull_rejects(v3_dot_d_from(s->bound_center, d, lpd), kb))
+        r_cull_rejects(v3_dot_d_from(s->bound_center, dd, lpd), kb))
         occ &= ~s->bound_set;
-    /* Set bits in increasing order (the objects' order); counted once, after the loop. */
+    /* Set bits in increasing order (the objects' order); counted once, after the loop. The
+     * lowest bit's clz j gives object 31 - j. */
     for (; occ; occ &= occ - 1) {
-        int i = __builtin_ctz(occ);
-        const rt_object *o = &s->objects[i];
+        int j = __builtin_clz(occ & (0 - occ));
+        const rt_object *o = &s->objects[31 - j];
+        rcull k = cull[31 - j];
         tested++;
         /* The ray from the light back along -d passes too far from the sphere for this
          * segment to reach it (rt_scene_prepare): the full test would miss. A plane's entry
          * is 0. */
-        rcull k = cull[i];
-        if (k != 0 && r_cull_rejects(v3_dot_d_from(o->center, d, lpd), k)) /* (c - light) . d */
-            continue;
-        if (shapes_blocks(o, &org, &d, dist)) {
+        if ((k == 0 ||
+             !r_cull_rejects(v3_dot_d_from(o->center, dd, lpd), k)) && /* (c - light) . d */
+            shapes_blocks(o, org, d, dist)) {
             blocked = 1;
             break;
         }

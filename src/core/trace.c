@@ -135,7 +135,7 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, const trace_hit *h, int 
          * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
         c->stats->rays_shadow++;
         if (sdist > R_EPS_OFFSET &&
-            rt_occluded(s, c->stats, i, occ, h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            rt_occluded(s, c->stats, i, occ, &h->p_out, &sl, r_sub(sdist, R_EPS_OFFSET)))
             return 0;
     }
     const rt_material *m = h->m;
