@@ -235,6 +235,11 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const 
     if (kb != 0 && (occ & s->bound_set) &&
         r_cull_rejects(v3_dot_d_from(s->bound_center, dd, lpd), kb))
         occ &= ~s->bound_set;
+    if (!occ)
+        return 0;
+    /* Only the objects that can block a ray of its quadrant (rt_scene_prepare). */
+    const dir3 *pl = s->shadow_plane[light];
+    occ &= s->shadow_quad[light][(d3_dot(dd, pl[0]) < 0) | (d3_dot(dd, pl[1]) < 0) << 1];
     /* Set bits in increasing order (the objects' order); counted once, after the loop. The
      * lowest bit's clz j gives object 31 - j. */
     for (; occ; occ &= occ - 1) {
