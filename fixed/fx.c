@@ -84,29 +84,31 @@ uint32_t fx_isqrt64(uint64_t n)
         return 0;
     /* Division-free: normalise n to [2^62, 2^64), 1/sqrt from fx_rsqrt62, multiply back,
      * correct once by the residual, then fix the last unit exactly. A digit-by-digit loop
-     * gives the same results but mispredicts a branch on each of its ~30 steps. */
+     * gives the same results but mispredicts a branch on each of its ~30 steps. Every value that
+     * fits a word is kept in one (a 32-bit core then forms no 64-bit compare or product it
+     * does not need). */
     int k = __builtin_clzll(n) & ~1;
     uint64_t x = n << k;
     uint32_t X = (uint32_t)(x >> 32);
     uint32_t y = fx_rsqrt62(x); /* 17 bits: the residual step below doubles them */
-    uint64_t s = ((uint64_t)X * y) >> 30;
-    if (s > UINT32_MAX)
-        s = UINT32_MAX;
+    uint64_t p = (uint64_t)X * y;
+    uint32_t s0 = p >> 62 ? UINT32_MAX : (uint32_t)(p >> 30); /* p / 2^30 capped at 2^32 - 1 */
     /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
-    int64_t r = (int64_t)(x - (uint64_t)(uint32_t)s * (uint32_t)s);
-    s = (uint64_t)((int64_t)s + (((r >> 16) * (int64_t)y) >> 47));
+    int64_t r = (int64_t)(x - (uint64_t)s0 * s0);
+    int64_t s = (int64_t)s0 + (((r >> 16) * (int64_t)y) >> 47);
     /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
      * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
     int h = k >> 1;
     /* s is at most 2^32 (x < 2^64); capping it at 2^32 - 1 changes no result: for h = 0 rr is
      * capped the same, for h >= 1 2^32 + 2^(h-1) is no multiple of 2^h, so the rounded shift
      * is the same. Then the rounded shift in 32 bits: s / 2^h rounded half up is s >> h plus
-     * bit h - 1 of s. */
-    uint32_t s32 = s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
-    uint64_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
-    int64_t d = (int64_t)(n - (uint64_t)(uint32_t)rr * (uint32_t)rr); /* |d| < 2^34: wraps back */
-    rr += (d > (int64_t)rr) - (d <= -(int64_t)rr);
-    return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
+     * bit h - 1 of s; rr is at least 1 (x >= 2^62, so s >= 2^31 - 1 and h <= 31). */
+    uint32_t s32 = s > (int64_t)UINT32_MAX ? UINT32_MAX : (uint32_t)s;
+    uint32_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
+    int64_t d = (int64_t)(n - (uint64_t)rr * rr); /* |d| < 2^34: wraps back */
+    if (d > (int64_t)rr)
+        return rr == UINT32_MAX ? rr : rr + 1; /* 2^32 is capped */
+    return rr - (d <= -(int64_t)rr);
 }
 
 /* Taylor series of sin and cos at x (a unit, |x| <= pi/4): errors below 2e-9 in Q2.30. */
