@@ -171,25 +171,19 @@ void u_sincos_deg(real deg, unit *s, unit *c)
 
 static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t)v; }
 
-/* The largest magnitude of three 32-bit components (at most 2^31), in 32-bit arithmetic. */
-static inline uint32_t fx_max_abs3_32(int32_t x, int32_t y, int32_t z)
+/* The magnitudes of three 32-bit components (each at most 2^31) ORed: zero exactly when all
+ * are, and with the same highest set bit as the largest of them, which is all normalisation
+ * scales by (a clz); no compare. */
+static inline uint32_t fx_top_abs3_32(int32_t x, int32_t y, int32_t z)
 {
-    uint32_t m = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
-    uint32_t t = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
-    if (t > m)
-        m = t;
-    t = z < 0 ? 0u - (uint32_t)z : (uint32_t)z;
-    return t > m ? t : m;
+    return (x < 0 ? 0u - (uint32_t)x : (uint32_t)x) | (y < 0 ? 0u - (uint32_t)y : (uint32_t)y) |
+        (z < 0 ? 0u - (uint32_t)z : (uint32_t)z);
 }
 
-/* The largest magnitude of three components: normalisation scales by it. */
-static uint64_t fx_max_abs3(int64_t x, int64_t y, int64_t z)
+/* The same for three 64-bit components. */
+static uint64_t fx_top_abs3(int64_t x, int64_t y, int64_t z)
 {
-    uint64_t m = fx_abs64(x), t = fx_abs64(y);
-    if (t > m)
-        m = t;
-    t = fx_abs64(z);
-    return t > m ? t : m;
+    return fx_abs64(x) | fx_abs64(y) | fx_abs64(z);
 }
 
 /* What normalising a zero vector gives: (0, 0, 0), length 0, and a domain event. */
@@ -301,7 +295,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
 
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    uint64_t m = fx_max_abs3(x, y, z);
+    uint64_t m = fx_top_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
@@ -329,10 +323,10 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = fx_max_abs3_32(x, y, z);
+    uint32_t m = fx_top_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clz(m) - 2; /* m 2^s in [2^29, 2^30): s >= -2 */
+    int s = __builtin_clz(m) - 2; /* the largest magnitude 2^s in [2^29, 2^30): s >= -2 */
     if (s >= 0) {
         x *= 1 << s;
         y *= 1 << s;
@@ -392,10 +386,10 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
  * (rounded) and fx_norm_scaled does the rest. */
 dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    uint64_t m = fx_max_abs3(x, y, z);
+    uint64_t m = fx_top_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clzll(m) - 48; /* m 2^s in [2^15, 2^16) */
+    int s = __builtin_clzll(m) - 48; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
         return fx_norm_scaled((int32_t)(x * ((int64_t)1 << s)), (int32_t)(y * ((int64_t)1 << s)),
                               (int32_t)(z * ((int64_t)1 << s)), s, frac, len);
@@ -405,10 +399,10 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = fx_max_abs3_32(x, y, z);
+    uint32_t m = fx_top_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */
+    int s = __builtin_clz(m) - 16; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
         return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
     return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s),
