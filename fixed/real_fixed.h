@@ -358,6 +358,19 @@ static inline real r_div_u(real a, unit b)
     return fx_sat(neg ? -q : q);
 }
 
+/* r_div_u(a, b) for a >= 0 and b > 0 (a plane test's num / den, both turned positive): the
+ * same quotient without the signs and the zero divisor. */
+static inline real r_div_u_pos(real a, unit b)
+{
+    uint64_t n = (uint64_t)a << FX_UF, m = (uint64_t)b;
+#if FX_SOFT_DIVIDE
+    int64_t q = (int64_t)fx_udiv64(n + m / 2, (uint32_t)m);
+#else
+    int64_t q = (int64_t)((n + m / 2) / m);
+#endif
+    return fx_sat(q);
+}
+
 /* Is r_div_u(a, b) > s, for a > 0, b > 0 and 0 <= s < R_MAX? The same answer without the
  * division: the quotient floor((a 2^F + b/2) / b) (saturated at R_MAX, above s) exceeds s exactly
  * when a 2^F + b/2 >= (s + 1) b (below 2^62). */

@@ -150,6 +150,9 @@ static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 
 static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
+/* r_div_u(a, b) for a >= 0 and b > 0 (the fixed build skips the signs there). */
+static inline real r_div_u_pos(real a, unit b) { return r_div_u(a, b); }
+
 /* Is r_div_u(a, b) > s (a > 0, b > 0, s >= 0)? */
 static inline int r_div_u_above(real a, unit b, real s) { return r_div_u(a, b) > s; }
 

@@ -61,8 +61,8 @@ SHAPES_INLINE int plane_meets(const rt_object *o, real num, dir3 d, real tmax, i
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
         return 0; /* parallel, or so nearly that the hit lies beyond any scene */
-    if (num == 0 || (num > 0) != (den > 0))
-        return 0; /* behind the origin */
+    if (num == 0 || (num < 0) != (den < 0))
+        return 0; /* behind the origin (den is not 0: the signs differ exactly then) */
     if (den < 0) {
         den = near ? u_neg_in(den) : u_neg(den);
         num = near ? r_neg_in(num) : r_neg(num);
@@ -82,7 +82,7 @@ SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int
     unit den;
     if (!plane_meets(o, num, d, tmax, near, &num, &den))
         return 0;
-    *t = r_div_u(num, den);
+    *t = r_div_u_pos(num, den);
     return 1;
 }
 
@@ -188,7 +188,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
     unit den;
     if (last >= 0 && plane_meets(&s->objects[last], s->eye_num[last], d, R_T_MAX, 1, &num, &den) &&
         (best < 0 || !r_div_u_above(num, den, tmax))) {
-        tmax = r_div_u(num, den);
+        tmax = r_div_u_pos(num, den);
         best = last;
     }
     *t = tmax;
