@@ -563,6 +563,12 @@ static inline int v3_faces(vec3 v, dir3 d)
     return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
 }
 
+/* Is a . b < 0 for unit vectors, exactly (no rounding of the sum)? */
+static inline int d3_below(dir3 a, dir3 b)
+{
+    return (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z < 0;
+}
+
 /* a . b for unit vectors: within 1 + 2^-28 (docs/numerics.md, "Dot products"), inside unit's
  * range, so the release build takes it without the saturation test (see r_mul_in); the
  * event-counting builds saturate and count. */

@@ -245,6 +245,9 @@ static inline int v3_faces(vec3 v, dir3 d) { return v.x * d.x + v.y * d.y + v.z 
 
 static inline unit d3_dot(dir3 a, dir3 b) { return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z); }
 
+/* Is a . b < 0 (as d3_dot forms it)? */
+static inline int d3_below(dir3 a, dir3 b) { return d3_dot(a, b) < 0; }
+
 static inline vec3 d3_scale(dir3 d, real s)
 {
     vec3 v = {d.x * s, d.y * s, d.z * s};

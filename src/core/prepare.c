@@ -234,10 +234,10 @@ static void scene_bound(rt_scene *s)
  * the side u . n > 0 of a plane through the light when u_c . n > sn (the farthest of them is
  * asin(sn) further off u_c, and u_c is less than 90 degrees minus that off n), and then
  * u . n >= sin(u_c . n - sn): with u_c . n > sn + 2^-10 as computed, above 2^-11, far beyond the
- * rounding of d3_dot(d, n) (and of d's and n's lengths: 2^-26 fixed, 2^-14 rt-fixed16, 2^-20
- * float). A ray with d3_dot(d, n) >= 0 has u . n below that, so the sphere's rejection refuses
- * it: the sphere is left out of the quadrants on that side (and the same with the signs
- * swapped).
+ * error of d . n's sign (d3_below: the exact sum in fixed) and of d's and n's lengths (2^-26
+ * fixed, 2^-14 rt-fixed16, 2^-20 float). A ray with d . n >= 0 (not d3_below) has u . n below
+ * that, so the sphere's rejection refuses it: the sphere is left out of the quadrants on that
+ * side (and the same with the signs swapped).
  *
  * The planes contain the direction a from the light to the spheres' bound, at right angles to
  * each other and 45 degrees either side of the plane through a and the vertical (or x, when a

@@ -158,7 +158,7 @@ typedef struct rt_scene {
     rcull bound_shadow_cull[RT_MAX_LIGHTS];
     /* Per light l, two planes through it (normals shadow_plane[l][0], [1]; zero when unused)
      * split the directions of its shadow rays into four quadrants: a ray toward the light along
-     * d is in quadrant q = [d3_dot(d, n0) < 0] + 2 [d3_dot(d, n1) < 0]. shadow_quad[l][q]: the
+     * d is in quadrant q = d3_below(d, n0) + 2 d3_below(d, n1). shadow_quad[l][q]: the
      * objects that can block a ray of quadrant q; every sphere left out has its shadow_cull cone
      * wholly on the other side of a plane, so its rejection would refuse the ray anyway. */
     dir3 shadow_plane[RT_MAX_LIGHTS][2];
