@@ -527,7 +527,8 @@ static inline int r_sqrt_w_below(wide a, int64_t t)
         return 0;
     if (t > ((int64_t)1 << 28))
         return 1;
-    return a <= t * t - t;
+    uint32_t u = (uint32_t)t; /* in [1, 2^28]: t^2 - t = t (t - 1), one 32 x 32-bit product */
+    return a <= (int64_t)((uint64_t)u * (u - 1));
 }
 
 /* The sphere test's last step for a shadow segment, without its square root: with
