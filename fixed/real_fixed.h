@@ -679,7 +679,9 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
 #endif
 
 /* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 30 + bits of r (so m is in
- * (2^30, 2^31]), for r in [1/128, 2048] (the scene limits); m = 0 otherwise. Costs a 64-bit
+ * (2^30, 2^31]), for r in [1/128, 2048] (the scene limits); m = 0 otherwise. m = 2^31 (r a
+ * power of two) is kept as 2^30 with s one less, the same ratio exactly: m then fits a signed
+ * word, and each product by it is one signed 32 x 32-bit multiply (smull). Costs a 64-bit
  * division: made once per object and frame. */
 static inline rinv r_inv_len(real r)
 {
@@ -689,6 +691,10 @@ static inline rinv r_inv_len(real r)
         return k;
     k.s = 30 + bits;
     k.m = (uint32_t)((((uint64_t)1 << k.s) + (uint64_t)r / 2) / (uint64_t)r);
+    if (k.m == (uint32_t)1 << 31) {
+        k.m >>= 1;
+        k.s--;
+    }
     return k;
 }
 
@@ -707,12 +713,13 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
 #if FX_UF == 30
     /* p = v.x m, |p| <= 2 r m, about 2^(s+1) <= 2^59; x = p 2^(60 - s) is v.x / r in Q.60, which
      * fx_renorm would take: the same steps on p. x is in its range [-2^61, 2^61) exactly when p
-     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [10, 28], i.e. when p's high word is in
+     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [9, 28], i.e. when p's high word is in
      * [-2^(sh-1), 2^(sh-1)); and x rounded to Q2.30, (x + 2^29) / 2^30, is (p + 2^(sh-1)) / 2^sh,
      * whose low word comes from the two words of the sum: no 64-bit shift by a variable. */
     int sh = k.s - 30;
     uint32_t half = 1u << (sh - 1);
-    int64_t px = (int64_t)v.x * k.m, py = (int64_t)v.y * k.m, pz = (int64_t)v.z * k.m;
+    int32_t m = (int32_t)k.m; /* below 2^31 */
+    int64_t px = (int64_t)v.x * m, py = (int64_t)v.y * m, pz = (int64_t)v.z * m;
     if ((uint32_t)(px >> 32) + half < 2 * half && (uint32_t)(py >> 32) + half < 2 * half &&
         (uint32_t)(pz >> 32) + half < 2 * half) {
         uint64_t qx = (uint64_t)px + half, qy = (uint64_t)py + half, qz = (uint64_t)pz + half;
@@ -726,7 +733,7 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
     int64_t f = (int64_t)1 << (60 - k.s);
     return fx_norm64(px * f, py * f, pz * f, 60, 0);
 #else
-    /* v.x m / 2^s is v.x / r; s >= 40 (r >= 1/128), so Q.32 is a right shift by s - 32 */
+    /* v.x m / 2^s is v.x / r; s >= 39 (r >= 1/128), so Q.32 is a right shift by s - 32 */
     int sh = k.s - 32;
     return fx_renorm(fx_round_shift(v.x * (int64_t)k.m, sh), fx_round_shift(v.y * (int64_t)k.m, sh),
                      fx_round_shift(v.z * (int64_t)k.m, sh));
