@@ -84,33 +84,35 @@ uint32_t fx_isqrt64(uint64_t n)
         return 0;
     /* Division-free: normalise n to [2^62, 2^64), 1/sqrt from fx_rsqrt62, multiply back,
      * correct once by the residual, then fix the last unit exactly. A digit-by-digit loop
-     * gives the same results but mispredicts a branch on each of its ~30 steps. */
+     * gives the same results but mispredicts a branch on each of its ~30 steps. Every value that
+     * fits a word is kept in one (a 32-bit core then forms no 64-bit compare or product it
+     * does not need). */
     int k = __builtin_clzll(n) & ~1;
     uint64_t x = n << k;
     uint32_t X = (uint32_t)(x >> 32);
     uint32_t y = fx_rsqrt62(x); /* 17 bits: the residual step below doubles them */
-    uint64_t s = ((uint64_t)X * y) >> 30;
-    if (s > UINT32_MAX)
-        s = UINT32_MAX;
+    uint64_t p = (uint64_t)X * y;
+    uint32_t s0 = p >> 62 ? UINT32_MAX : (uint32_t)(p >> 30); /* p / 2^30 capped at 2^32 - 1 */
     /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
-    int64_t r = (int64_t)(x - (uint64_t)(uint32_t)s * (uint32_t)s);
-    s = (uint64_t)((int64_t)s + (((r >> 16) * (int64_t)y) >> 47));
+    int64_t r = (int64_t)(x - (uint64_t)s0 * s0);
+    int64_t s = (int64_t)s0 + (((r >> 16) * (int64_t)y) >> 47);
     /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
      * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
     int h = k >> 1;
     /* s is at most 2^32 (x < 2^64); capping it at 2^32 - 1 changes no result: for h = 0 rr is
      * capped the same, for h >= 1 2^32 + 2^(h-1) is no multiple of 2^h, so the rounded shift
      * is the same. Then the rounded shift in 32 bits: s / 2^h rounded half up is s >> h plus
-     * bit h - 1 of s. */
-    uint32_t s32 = s > UINT32_MAX ? UINT32_MAX : (uint32_t)s;
-    uint64_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
-    int64_t d = (int64_t)(n - (uint64_t)(uint32_t)rr * (uint32_t)rr); /* |d| < 2^34: wraps back */
-    rr += (d > (int64_t)rr) - (d <= -(int64_t)rr);
-    return rr > UINT32_MAX ? UINT32_MAX : (uint32_t)rr;
+     * bit h - 1 of s; rr is at least 1 (x >= 2^62, so s >= 2^31 - 1 and h <= 31). */
+    uint32_t s32 = s > (int64_t)UINT32_MAX ? UINT32_MAX : (uint32_t)s;
+    uint32_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
+    int64_t d = (int64_t)(n - (uint64_t)rr * rr); /* |d| < 2^34: wraps back */
+    if (d > (int64_t)rr)
+        return rr == UINT32_MAX ? rr : rr + 1; /* 2^32 is capped */
+    return rr - (d <= -(int64_t)rr);
 }
 
 /* Taylor series of sin and cos at x (a unit, |x| <= pi/4): errors below 2e-9 in Q2.30. */
-static void fx_sincos_series(unit x, unit *s, unit *c)
+static __attribute__((cold)) void fx_sincos_series(unit x, unit *s, unit *c)
 {
     unit x2 = u_mul(x, x);
     /* Horner: sin = x (1 - x2/6 (1 - x2/20 (1 - x2/42 (1 - x2/72 (1 - x2/110))))) */
@@ -127,7 +129,8 @@ static void fx_sincos_series(unit x, unit *s, unit *c)
     *c = t;
 }
 
-void u_sincos_deg(real deg, unit *s, unit *c)
+/* Once per frame (the camera's field of view): compiled for size (cold). */
+__attribute__((cold)) void u_sincos_deg(real deg, unit *s, unit *c)
 {
     /* Fold the angle exactly, in degrees: into [0, 360), then into the first octant. */
     int32_t a = r_mod(deg, R(360.0));
@@ -169,25 +172,19 @@ void u_sincos_deg(real deg, unit *s, unit *c)
 
 static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t)v; }
 
-/* The largest magnitude of three 32-bit components (at most 2^31), in 32-bit arithmetic. */
-static inline uint32_t fx_max_abs3_32(int32_t x, int32_t y, int32_t z)
+/* The magnitudes of three 32-bit components (each at most 2^31) ORed: zero exactly when all
+ * are, and with the same highest set bit as the largest of them, which is all normalisation
+ * scales by (a clz); no compare. */
+static inline uint32_t fx_top_abs3_32(int32_t x, int32_t y, int32_t z)
 {
-    uint32_t m = x < 0 ? 0u - (uint32_t)x : (uint32_t)x;
-    uint32_t t = y < 0 ? 0u - (uint32_t)y : (uint32_t)y;
-    if (t > m)
-        m = t;
-    t = z < 0 ? 0u - (uint32_t)z : (uint32_t)z;
-    return t > m ? t : m;
+    return (x < 0 ? 0u - (uint32_t)x : (uint32_t)x) | (y < 0 ? 0u - (uint32_t)y : (uint32_t)y) |
+        (z < 0 ? 0u - (uint32_t)z : (uint32_t)z);
 }
 
-/* The largest magnitude of three components: normalisation scales by it. */
-static uint64_t fx_max_abs3(int64_t x, int64_t y, int64_t z)
+/* The same for three 64-bit components. */
+static uint64_t fx_top_abs3(int64_t x, int64_t y, int64_t z)
 {
-    uint64_t m = fx_abs64(x), t = fx_abs64(y);
-    if (t > m)
-        m = t;
-    t = fx_abs64(z);
-    return t > m ? t : m;
+    return fx_abs64(x) | fx_abs64(y) | fx_abs64(z);
 }
 
 /* What normalising a zero vector gives: (0, 0, 0), length 0, and a domain event. */
@@ -271,7 +268,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
     uint64_t xs = sum << k;
     uint64_t r = fx_rsqrt64(xs);
     int t = k == 2;
-    uint64_t half = (uint64_t)1 << (31 + t);
+    uint64_t half = (uint64_t)(1 + t) << 31; /* 2^(31 + t): constant shifts */
     int32_t rl = (int32_t)(uint32_t)r;
     uint32_t rh = (uint32_t)(r >> 32) + ((uint32_t)r >> 31);
     d.x = fx_mul_r(sx, rl, rh, half, t);
@@ -282,7 +279,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
          * l in [2^29, 2^31], to about a unit: (xs / 2^32) (r / 2) / 2^(30 + k/2), halved and
          * rounded, i.e. (product + 2^(30 + k/2)) / 2^(31 + k/2), taken as the high word shifted
          * by 1 - t. |v| = l * 2^-s in units of 2^-frac; as Q16.16 that is l * 2^(16 - frac - s). */
-        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)1 << (32 - t)); /* below 2^63 */
+        uint64_t pl = (xs >> 32) * (r >> 1) + ((uint64_t)(2 - t) << 31); /* below 2^63 */
         uint32_t l = (uint32_t)(pl >> 32) >> (1 - t);
         int sh = 16 - frac - s;
         if (sh >= 32)
@@ -297,9 +294,11 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
     return d;
 }
 
-dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
+/* Off the tracer's usual paths (the camera's frame once per frame; fx_renorm's far-from-unit
+ * fallback): compiled for size (cold). */
+__attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    uint64_t m = fx_max_abs3(x, y, z);
+    uint64_t m = fx_top_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
     /* Bring the largest component into [2^29, 2^30): tiny vectors keep all their bits, large
@@ -327,10 +326,10 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = fx_max_abs3_32(x, y, z);
+    uint32_t m = fx_top_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clz(m) - 2; /* m 2^s in [2^29, 2^30): s >= -2 */
+    int s = __builtin_clz(m) - 2; /* the largest magnitude 2^s in [2^29, 2^30): s >= -2 */
     if (s >= 0) {
         x *= 1 << s;
         y *= 1 << s;
@@ -388,12 +387,14 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
 
 /* Unit in Q16.16, any 64-bit vector: the largest component is brought into [2^15, 2^16]
  * (rounded) and fx_norm_scaled does the rest. */
-dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
+/* Off the tracer's usual paths (the camera's frame once per frame; fx_renorm's far-from-unit
+ * fallback): compiled for size (cold). */
+__attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
-    uint64_t m = fx_max_abs3(x, y, z);
+    uint64_t m = fx_top_abs3(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clzll(m) - 48; /* m 2^s in [2^15, 2^16) */
+    int s = __builtin_clzll(m) - 48; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
         return fx_norm_scaled((int32_t)(x * ((int64_t)1 << s)), (int32_t)(y * ((int64_t)1 << s)),
                               (int32_t)(z * ((int64_t)1 << s)), s, frac, len);
@@ -403,10 +404,10 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
 {
-    uint32_t m = fx_max_abs3_32(x, y, z);
+    uint32_t m = fx_top_abs3_32(x, y, z);
     if (m == 0)
         return fx_norm_zero(len);
-    int s = __builtin_clz(m) - 16; /* m 2^s in [2^15, 2^16) */
+    int s = __builtin_clz(m) - 16; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
         return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
     return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s),

@@ -358,6 +358,19 @@ static inline real r_div_u(real a, unit b)
     return fx_sat(neg ? -q : q);
 }
 
+/* r_div_u(a, b) for a >= 0 and b > 0 (a plane test's num / den, both turned positive): the
+ * same quotient without the signs and the zero divisor. */
+static inline real r_div_u_pos(real a, unit b)
+{
+    uint64_t n = (uint64_t)a << FX_UF, m = (uint64_t)b;
+#if FX_SOFT_DIVIDE
+    int64_t q = (int64_t)fx_udiv64(n + m / 2, (uint32_t)m);
+#else
+    int64_t q = (int64_t)((n + m / 2) / m);
+#endif
+    return fx_sat(q);
+}
+
 /* Is r_div_u(a, b) > s, for a > 0, b > 0 and 0 <= s < R_MAX? The same answer without the
  * division: the quotient floor((a 2^F + b/2) / b) (saturated at R_MAX, above s) exceeds s exactly
  * when a 2^F + b/2 >= (s + 1) b (below 2^62). */
@@ -514,7 +527,8 @@ static inline int r_sqrt_w_below(wide a, int64_t t)
         return 0;
     if (t > ((int64_t)1 << 28))
         return 1;
-    return a <= t * t - t;
+    uint32_t u = (uint32_t)t; /* in [1, 2^28]: t^2 - t = t (t - 1), one 32 x 32-bit product */
+    return a <= (int64_t)((uint64_t)u * (u - 1));
 }
 
 /* The sphere test's last step for a shadow segment, without its square root: with
@@ -548,6 +562,12 @@ static inline real v3_dot_d(vec3 v, dir3 d)
 static inline int v3_faces(vec3 v, dir3 d)
 {
     return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
+}
+
+/* Is a . b < 0 for unit vectors, exactly (no rounding of the sum)? */
+static inline int d3_below(dir3 a, dir3 b)
+{
+    return (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z < 0;
 }
 
 /* a . b for unit vectors: within 1 + 2^-28 (docs/numerics.md, "Dot products"), inside unit's
@@ -659,7 +679,9 @@ static inline dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
 #endif
 
 /* 1/r prepared for d3_norm_near: m = 2^s / r rounded, s = 30 + bits of r (so m is in
- * (2^30, 2^31]), for r in [1/128, 2048] (the scene limits); m = 0 otherwise. Costs a 64-bit
+ * (2^30, 2^31]), for r in [1/128, 2048] (the scene limits); m = 0 otherwise. m = 2^31 (r a
+ * power of two) is kept as 2^30 with s one less, the same ratio exactly: m then fits a signed
+ * word, and each product by it is one signed 32 x 32-bit multiply (smull). Costs a 64-bit
  * division: made once per object and frame. */
 static inline rinv r_inv_len(real r)
 {
@@ -669,6 +691,10 @@ static inline rinv r_inv_len(real r)
         return k;
     k.s = 30 + bits;
     k.m = (uint32_t)((((uint64_t)1 << k.s) + (uint64_t)r / 2) / (uint64_t)r);
+    if (k.m == (uint32_t)1 << 31) {
+        k.m >>= 1;
+        k.s--;
+    }
     return k;
 }
 
@@ -687,12 +713,13 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
 #if FX_UF == 30
     /* p = v.x m, |p| <= 2 r m, about 2^(s+1) <= 2^59; x = p 2^(60 - s) is v.x / r in Q.60, which
      * fx_renorm would take: the same steps on p. x is in its range [-2^61, 2^61) exactly when p
-     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [10, 28], i.e. when p's high word is in
+     * is in [-2^(sh+31), 2^(sh+31)), sh = s - 30 in [9, 28], i.e. when p's high word is in
      * [-2^(sh-1), 2^(sh-1)); and x rounded to Q2.30, (x + 2^29) / 2^30, is (p + 2^(sh-1)) / 2^sh,
      * whose low word comes from the two words of the sum: no 64-bit shift by a variable. */
     int sh = k.s - 30;
     uint32_t half = 1u << (sh - 1);
-    int64_t px = (int64_t)v.x * k.m, py = (int64_t)v.y * k.m, pz = (int64_t)v.z * k.m;
+    int32_t m = (int32_t)k.m; /* below 2^31 */
+    int64_t px = (int64_t)v.x * m, py = (int64_t)v.y * m, pz = (int64_t)v.z * m;
     if ((uint32_t)(px >> 32) + half < 2 * half && (uint32_t)(py >> 32) + half < 2 * half &&
         (uint32_t)(pz >> 32) + half < 2 * half) {
         uint64_t qx = (uint64_t)px + half, qy = (uint64_t)py + half, qz = (uint64_t)pz + half;
@@ -706,7 +733,7 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
     int64_t f = (int64_t)1 << (60 - k.s);
     return fx_norm64(px * f, py * f, pz * f, 60, 0);
 #else
-    /* v.x m / 2^s is v.x / r; s >= 40 (r >= 1/128), so Q.32 is a right shift by s - 32 */
+    /* v.x m / 2^s is v.x / r; s >= 39 (r >= 1/128), so Q.32 is a right shift by s - 32 */
     int sh = k.s - 32;
     return fx_renorm(fx_round_shift(v.x * (int64_t)k.m, sh), fx_round_shift(v.y * (int64_t)k.m, sh),
                      fx_round_shift(v.z * (int64_t)k.m, sh));
@@ -776,15 +803,17 @@ static inline vec3 d3_scale_in(dir3 d, real s)
 /* v3_dot_d_in(v3_sub_in(c, l), d) in two parts, for one ray d against many points c:
  * part = v3_dot_part(l, d) once, then v3_dot_d_from(c, d, part) per point. The same value:
  * the unrounded sums c . d - l . d and (c - l) . d are equal (in-scene c and l: each sum
- * below 2^61). */
+ * below 2^61). The part holds the rounding's half too, 2^(F-1) - l . d, so that each point's
+ * dot product accumulates onto it (smlal on ARM) and is rounded by the shift alone. */
 typedef int64_t dotpart;
 static inline dotpart v3_dot_part(vec3 l, dir3 d)
 {
-    return (int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z;
+    return ((int64_t)1 << (FX_UF - 1)) -
+        ((int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z);
 }
 static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
 {
-    int64_t s = (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z - part;
-    return (real)fx_round_shift(s, FX_UF);
+    int64_t s = part + (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z;
+    return (real)(s >> FX_UF);
 }
 #endif

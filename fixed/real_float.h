@@ -150,6 +150,9 @@ static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 
 static inline real r_div_u(real a, unit b) { return r_div(a, b); }
 
+/* r_div_u(a, b) for a >= 0 and b > 0 (the fixed build skips the signs there). */
+static inline real r_div_u_pos(real a, unit b) { return r_div_u(a, b); }
+
 /* Is r_div_u(a, b) > s (a > 0, b > 0, s >= 0)? */
 static inline int r_div_u_above(real a, unit b, real s) { return r_div_u(a, b) > s; }
 
@@ -241,6 +244,9 @@ static inline real v3_dot_d(vec3 v, dir3 d) { return fl_chk(v.x * d.x + v.y * d.
 static inline int v3_faces(vec3 v, dir3 d) { return v.x * d.x + v.y * d.y + v.z * d.z > 0; }
 
 static inline unit d3_dot(dir3 a, dir3 b) { return fl_chk(a.x * b.x + a.y * b.y + a.z * b.z); }
+
+/* Is a . b < 0 (as d3_dot forms it)? */
+static inline int d3_below(dir3 a, dir3 b) { return d3_dot(a, b) < 0; }
 
 static inline vec3 d3_scale(dir3 d, real s)
 {

@@ -282,7 +282,7 @@ static void test_shadow_cull(void **state)
             continue;
         int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
         rt_stats st = {0};
-        int got = rt_occluded(&s, &st, 0, 1, p_out, l, seg);
+        int got = rt_occluded(&s, &st, 0, 1, &p_out, &l, seg);
         if (got != want)
             fail_msg("rt_occluded %d, sphere test %d (case %d, r %g, q at %g of the centre)", got,
                      want, i, r, rq);
@@ -365,16 +365,18 @@ static void test_behind_cut(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
-/* The bounding sphere's rejection of shadow rays (rt_scene.bound_*) never changes a result:
- * for clusters of 2 to 6 spheres and a light, shadow segments built as trace.c builds them that
- * pass just outside or inside the bound, or graze a sphere touching it, are blocked through
- * rt_occluded exactly when they are with the bound switched off (bound_set = 0, each sphere
- * then tested on its own), and the bound does reject many of them, near misses included. */
+/* The bounding sphere's rejection of shadow rays (rt_scene.bound_*) and the quadrants of the
+ * light's shadow rays (rt_scene.shadow_quad) never change a result: for clusters of 2 to 6
+ * spheres and a light, shadow segments built as trace.c builds them that pass just outside or
+ * inside the bound, or graze a sphere touching it, are blocked through rt_occluded exactly when
+ * they are with the bound switched off (bound_set = 0), and with the quadrants switched off too
+ * (every mask all ones: each sphere then tested on its own); the bound does reject many of them,
+ * near misses included, and the quadrants leave out spheres for many. */
 static void test_shadow_bound(void **state)
 {
     (void)state;
-    static rt_scene s, plain;
-    int n = 100000, rejected = 0, near_rejected = 0, blocked = 0;
+    static rt_scene s, plain, open;
+    int n = 100000, rejected = 0, near_rejected = 0, blocked = 0, quad_cut = 0;
     fx_events_reset();
     for (int i = 0; i < n; i++) {
         double span = i % 10 == 0 ? 1000.0 : 10.0, size = i % 10 == 0 ? 50.0 : 2.0;
@@ -395,6 +397,9 @@ static void test_shadow_bound(void **state)
             fail_msg("no bound for %d spheres", s.nobjects);
         plain = s;
         plain.bound_set = 0;
+        open = plain;
+        for (int q = 0; q < 4; q++)
+            open.shadow_quad[0][q] = 0xFFFFFFFFu;
         /* a point q near the bound's surface (or, every third case, near a sphere's), at right
          * angles to the light, and a surface point p beyond it as seen from the light */
         double cx = to_d(s.bound_center.x), cy = to_d(s.bound_center.y),
@@ -415,13 +420,16 @@ static void test_shadow_bound(void **state)
         if (!shadow_segment(&s, cx, cy, cz, ux, uy, uz, rq, i & 1, &p_out, &l, &seg))
             continue;
         uint32_t all = ((uint32_t)1 << s.nobjects) - 1;
-        rt_stats st = {0}, st_plain = {0};
-        int got = rt_occluded(&s, &st, 0, all, p_out, l, seg);
-        int want = rt_occluded(&plain, &st_plain, 0, all, p_out, l, seg);
-        if (got != want)
-            fail_msg("with the bound %d, without %d (case %d, %d spheres)", got, want, i,
-                     s.nobjects);
+        rt_stats st = {0}, st_plain = {0}, st_open = {0};
+        int got = rt_occluded(&s, &st, 0, all, &p_out, &l, seg);
+        int want = rt_occluded(&plain, &st_plain, 0, all, &p_out, &l, seg);
+        int open_got = rt_occluded(&open, &st_open, 0, all, &p_out, &l, seg);
+        if (got != want || open_got != want)
+            fail_msg("with the bound %d, without %d, without the quadrants too %d (case %d, %d "
+                     "spheres)",
+                     got, want, open_got, i, s.nobjects);
         blocked += want;
+        quad_cut += st_plain.shadow_tests < st_open.shadow_tests;
         if (st.shadow_tests < st_plain.shadow_tests && !want) {
             rejected++;
             if (i % 3 != 0 && i % 4 != 1)
@@ -429,11 +437,13 @@ static void test_shadow_bound(void **state)
         }
     }
     print_message("shadow bound: %d segments, %d blocked, %d rejected by the bound (%d of them "
-                  "passing within 0.02 + 0.2%% of its radius)\n",
-                  n, blocked, rejected, near_rejected);
+                  "passing within 0.02 + 0.2%% of its radius), %d with spheres left out by their "
+                  "quadrant\n",
+                  n, blocked, rejected, near_rejected, quad_cut);
     assert_true(blocked > n / 20);
     assert_true(rejected > n / 20);
     assert_true(near_rejected > n / 500);
+    assert_true(quad_cut > n / 20);
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 

@@ -131,9 +131,3 @@ VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
             view_cone(v, v->mirror_cols, v->mirror_rows, l, cone, (uint32_t)1 << i);
     }
 }
-
-dir3 rt_view_ray(const rt_view *v, int x, int y)
-{
-    return d3_ray_at(&v->fwd, &v->right, &v->up, v->step, 2 * x + 1 - v->width,
-                     v->height - 2 * y - 1);
-}

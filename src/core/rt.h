@@ -156,6 +156,13 @@ typedef struct rt_scene {
     vec3 bound_center;
     real bound_radius;
     rcull bound_shadow_cull[RT_MAX_LIGHTS];
+    /* Per light l, two planes through it (normals shadow_plane[l][0], [1]; zero when unused)
+     * split the directions of its shadow rays into four quadrants: a ray toward the light along
+     * d is in quadrant q = d3_below(d, n0) + 2 d3_below(d, n1). shadow_quad[l][q]: the
+     * objects that can block a ray of quadrant q; every sphere left out has its shadow_cull cone
+     * wholly on the other side of a plane, so its rejection would refuse the ray anyway. */
+    dir3 shadow_plane[RT_MAX_LIGHTS][2];
+    uint32_t shadow_quad[RT_MAX_LIGHTS][4];
 } rt_scene;
 
 /* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
@@ -360,8 +367,13 @@ int rt_view_ok(const rt_camera *cam);
  * axis. */
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
 
-/* Direction of the primary ray through the centre of pixel (x, y). */
-dir3 rt_view_ray(const rt_view *v, int x, int y);
+/* Direction of the primary ray through the centre of pixel (x, y). Inline: the tracer asks
+ * for one per traced point, and the call would cost more than the two offsets it forms. */
+static inline dir3 rt_view_ray(const rt_view *v, int x, int y)
+{
+    return d3_ray_at(&v->fwd, &v->right, &v->up, v->step, 2 * x + 1 - v->width,
+                     v->height - 2 * y - 1);
+}
 
 /* Fills the view's primary-ray candidate sets (rt_view_candidates) for scene s as prepared
  * (rt_scene_prepare) with its eye_at at the view's eye: a sphere is left out of the tiles
@@ -432,8 +444,8 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t);
 /* Does any object of the set `occ` (bit i: object i) block the shadow ray toward light
  * `light`, the segment from org along d of length dist? Counts the objects tested in
  * st->shadow_tests. */
-int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
-                real dist);
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const vec3 *org,
+                const dir3 *d, real dist);
 
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably

@@ -61,8 +61,8 @@ SHAPES_INLINE int plane_meets(const rt_object *o, real num, dir3 d, real tmax, i
     unit den = d3_dot(d, o->normal);
     if (den > -U_EPS_PARALLEL && den < U_EPS_PARALLEL)
         return 0; /* parallel, or so nearly that the hit lies beyond any scene */
-    if (num == 0 || (num > 0) != (den > 0))
-        return 0; /* behind the origin */
+    if (num == 0 || (num < 0) != (den < 0))
+        return 0; /* behind the origin (den is not 0: the signs differ exactly then) */
     if (den < 0) {
         den = near ? u_neg_in(den) : u_neg(den);
         num = near ? r_neg_in(num) : r_neg(num);
@@ -82,7 +82,7 @@ SHAPES_INLINE int plane_hit(const rt_object *o, real num, dir3 d, real tmax, int
     unit den;
     if (!plane_meets(o, num, d, tmax, near, &num, &den))
         return 0;
-    *t = r_div_u(num, den);
+    *t = r_div_u_pos(num, den);
     return 1;
 }
 
@@ -116,16 +116,23 @@ static RT_OUT_OF_LINE int shapes_plane(const rt_object *o, const vec3 *org, cons
 int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
 {
     int best = -1;
+    /* a sphere's tca = (c - org) . d as c . d against the ray's part (v3_dot_part): l = c - org
+     * is formed only for the spheres sphere_hit's first test does not reject */
+    const dotpart od = v3_dot_part(org, d);
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         real hit;
         if (i == skip)
             continue;
-        if (o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, &hit)
-                                 : shapes_plane(o, &org, &d, tmax, &hit)) {
-            tmax = hit;
-            best = i;
+        if (o->kind == RT_SPHERE) {
+            real tca = v3_dot_d_from(o->center, d, od);
+            if (tca < o->behind || !sphere_hit(o, v3_sub_in(o->center, org), tca, d, tmax, &hit))
+                continue;
+        } else if (!shapes_plane(o, &org, &d, tmax, &hit)) {
+            continue;
         }
+        tmax = hit;
+        best = i;
     }
     *t = tmax;
     return best;
@@ -205,7 +212,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
     unit den;
     if (last >= 0 && plane_meets(&s->objects[last], s->eye_num[last], d, R_T_MAX, 1, &num, &den) &&
         (best < 0 || !r_div_u_above(num, den, tmax))) {
-        tmax = r_div_u(num, den);
+        tmax = r_div_u_pos(num, den);
         best = last;
     }
     *t = tmax;
@@ -239,30 +246,37 @@ static RT_OUT_OF_LINE int shapes_blocks(const rt_object *o, const vec3 *org, con
                                 : plane_intersect(o, *org, *d, dist, &hit);
 }
 
-int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, vec3 org, dir3 d,
-                real dist)
+int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const vec3 *org,
+                const dir3 *d, real dist)
 {
-    const dotpart lpd = v3_dot_part(s->lights[light].pos, d);
+    const dir3 dd = *d;
+    const dotpart lpd = v3_dot_part(s->lights[light].pos, dd);
     const rcull *cull = s->shadow_cull[light];
     uint32_t tested = 0;
     int blocked = 0;
     /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
     rcull kb = s->bound_shadow_cull[light];
     if (kb != 0 && (occ & s->bound_set) &&
-        r_cull_rejects(v3_dot_d_from(s->bound_center, d, lpd), kb))
+        r_cull_rejects(v3_dot_d_from(s->bound_center, dd, lpd), kb))
         occ &= ~s->bound_set;
-    /* Set bits in increasing order (the objects' order); counted once, after the loop. */
+    if (!occ)
+        return 0;
+    /* Only the objects that can block a ray of its quadrant (rt_scene_prepare). */
+    const dir3 *pl = s->shadow_plane[light];
+    occ &= s->shadow_quad[light][d3_below(dd, pl[0]) | d3_below(dd, pl[1]) << 1];
+    /* Set bits in increasing order (the objects' order); counted once, after the loop. The
+     * lowest bit's clz j gives object 31 - j. */
     for (; occ; occ &= occ - 1) {
-        int i = __builtin_ctz(occ);
-        const rt_object *o = &s->objects[i];
+        int j = __builtin_clz(occ & (0 - occ));
+        const rt_object *o = &s->objects[31 - j];
+        rcull k = cull[31 - j];
         tested++;
         /* The ray from the light back along -d passes too far from the sphere for this
          * segment to reach it (rt_scene_prepare): the full test would miss. A plane's entry
          * is 0. */
-        rcull k = cull[i];
-        if (k != 0 && r_cull_rejects(v3_dot_d_from(o->center, d, lpd), k)) /* (c - light) . d */
-            continue;
-        if (shapes_blocks(o, &org, &d, dist)) {
+        if ((k == 0 ||
+             !r_cull_rejects(v3_dot_d_from(o->center, dd, lpd), k)) && /* (c - light) . d */
+            shapes_blocks(o, org, d, dist)) {
             blocked = 1;
             break;
         }

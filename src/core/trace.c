@@ -166,19 +166,22 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_
          * just above a floor seen from the underside of a ball: a false shadow). For
          * such lights it is aimed from p_out itself and ends at the light. */
         real sdist = dist;
-        dir3 sl = l;
+        dir3 near_l;
+        const dir3 *sl = &l;
         if (s->near_lights & (1u << i)) {
             vec3 to_light_out = v3_sub_in(li->pos, h->p_out);
             sdist = 0;
-            if (!v3_is_zero(to_light_out))
-                sl = d3_norm(to_light_out, &sdist);
+            if (!v3_is_zero(to_light_out)) {
+                near_l = d3_norm(to_light_out, &sdist);
+                sl = &near_l;
+            }
         }
         /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
          * off the surface: a surface through the light itself (a light in a corner of
          * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
         c->stats->rays_shadow++;
         if (sdist > R_EPS_OFFSET &&
-            rt_occluded(s, c->stats, i, occ, h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            rt_occluded(s, c->stats, i, occ, &h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
             return 0;
     }
     const rt_material *m = h->m;
