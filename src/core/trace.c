@@ -304,7 +304,11 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
      * than any noise octave) so that it cannot saturate however deep the recursion */
     const real travel_max = r_muli(R_SCENE_MAX, 2);
     travelled = t < r_sub(travel_max, travelled) ? r_add(travelled, t) : travel_max;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c)
+    /* a material without texture, or with a checker of one colour, is its diffuse colour with
+     * no cell, as rt_texture_color would return: tested here, without the call (half the hits) */
+    const rt_texture *tx = &m->tex;
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c) && tx->kind != RT_TEX_NONE &&
+            (tx->kind != RT_TEX_CHECKER || tx->cells)
         ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
