@@ -759,9 +759,13 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
  * (smull) and 2 dn n.x stays below 2^62. */
 static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    int64_t x = (int64_t)d.x * U_ONE - 2 * ((int64_t)dn * n.x);
-    int64_t y = (int64_t)d.y * U_ONE - 2 * ((int64_t)dn * n.y);
-    int64_t z = (int64_t)d.z * U_ONE - 2 * ((int64_t)dn * n.z);
+    /* formed as 2 (d.x U_ONE / 2 + (-dn) n.x), the same value: a multiply-accumulate onto
+     * d.x U_ONE / 2 (smlal), doubled (-dn is in range by the bound on dn) */
+    const int64_t half = (int64_t)1 << (FX_UF - 1);
+    const int32_t m = -dn;
+    int64_t x = 2 * ((int64_t)d.x * half + (int64_t)m * n.x);
+    int64_t y = 2 * ((int64_t)d.y * half + (int64_t)m * n.y);
+    int64_t z = 2 * ((int64_t)d.z * half + (int64_t)m * n.z);
     return fx_renorm(x, y, z);
 }
 
