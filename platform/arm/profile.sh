@@ -36,7 +36,8 @@ plugin=build/arm/qemu_profile.so
 [ -f "$plugin" ] || die "$plugin is missing: run make $plugin (make qemu-profile builds it)"
 command -v arm-none-eabi-addr2line >/dev/null || die "arm-none-eabi-addr2line is missing: run ./setup.sh --arm"
 
-sym() { arm-none-eabi-nm "$elf" | awk -v s="$1" '$3 == s { print "0x" $1; exit }'; }
+# (awk reads nm's whole output: leaving early would kill nm with SIGPIPE, fatal under pipefail)
+sym() { arm-none-eabi-nm "$elf" | awk -v s="$1" '$3 == s && !f { print "0x" $1; f = 1 }'; }
 start=$(sym rt_render_band_into)
 stop=$(sym plat_time_ns)
 if [ -z "$start" ] || [ -z "$stop" ]; then die "rt_render_band_into or plat_time_ns not found in $elf"; fi
