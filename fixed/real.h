@@ -245,16 +245,20 @@ static inline real r_min(real a, real b) { return a < b ? a : b; }
 static inline real r_max(real a, real b) { return a > b ? a : b; }
 
 /* base^n for base in [0, 1] (to a few steps of unit) and n >= 1, by repeated squaring (the same
- * steps in both builds; every product within [0, 1], so u_mul_in). */
+ * steps in both builds; every product within [0, 1], so u_mul_in). The result starts as the
+ * power of n's lowest set bit itself: the same value as U_ONE times it (a product by one is
+ * exact), one product fewer; the squarings stop at n's top bit. */
 static inline unit u_pow(unit base, unsigned n)
 {
-    unit result = U_ONE;
-    while (n) {
+    if (n == 0)
+        return U_ONE;
+    for (; !(n & 1u); n >>= 1)
+        base = u_mul_in(base, base);
+    unit result = base;
+    while (n >>= 1) {
+        base = u_mul_in(base, base);
         if (n & 1u)
             result = u_mul_in(result, base);
-        n >>= 1;
-        if (n)
-            base = u_mul_in(base, base);
     }
     return result;
 }

@@ -327,8 +327,20 @@ static inline real r_mod_pow2(real x, real m) { return x & (m - 1); }
 /* r_mod_pow2(r_muli(x, 2), m) for x = r_mod_pow2(y, m) (so in [0, m]): the same mask. */
 static inline real r_mod_pow2_twice(real x, real m) { return r_mod_pow2(r_muli(x, 2), m); }
 
+/* 1 where a is a compile-time constant 2^k with 2^k < U_ONE (R_EPS_OFFSET, 2^-9): then
+ * round(a u / U_ONE) = round(u / 2^(FX_UF - k)), since a u + 2^(FX_UF - 1) is 2^k (u +
+ * 2^(FX_UF - 1 - k)); fx_round_shift32 forms it in 32 bits (two or three instructions on ARM
+ * instead of a 64-bit product), the same value, never outside real's range. */
+#define FX_POW2_BELOW_UNIT(a) \
+    (__builtin_constant_p(a) && (a) > 0 && (a) < ((int32_t)1 << FX_UF) && ((a) & ((a)-1)) == 0)
+
 /* real * unit -> real, rounded. */
-static inline real r_mul_u(real a, unit u) { return fx_sat(fx_round_shift((int64_t)a * u, FX_UF)); }
+static inline real r_mul_u(real a, unit u)
+{
+    if (FX_POW2_BELOW_UNIT(a))
+        return fx_round_shift32(u, FX_UF - __builtin_ctz((uint32_t)a));
+    return fx_sat(fx_round_shift((int64_t)a * u, FX_UF));
+}
 
 /* r_mul_u inside a proven bound (see r_mul_in). */
 #if FX_COUNT_EVENTS
@@ -336,6 +348,8 @@ static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 #else
 static inline real r_mul_u_in(real a, unit u)
 {
+    if (FX_POW2_BELOW_UNIT(a))
+        return fx_round_shift32(u, FX_UF - __builtin_ctz((uint32_t)a));
     return (real)fx_round_shift((int64_t)a * u, FX_UF);
 }
 #endif
@@ -745,9 +759,13 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
  * (smull) and 2 dn n.x stays below 2^62. */
 static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
-    int64_t x = (int64_t)d.x * U_ONE - 2 * ((int64_t)dn * n.x);
-    int64_t y = (int64_t)d.y * U_ONE - 2 * ((int64_t)dn * n.y);
-    int64_t z = (int64_t)d.z * U_ONE - 2 * ((int64_t)dn * n.z);
+    /* formed as 2 (d.x U_ONE / 2 + (-dn) n.x), the same value: a multiply-accumulate onto
+     * d.x U_ONE / 2 (smlal), doubled (-dn is in range by the bound on dn) */
+    const int64_t half = (int64_t)1 << (FX_UF - 1);
+    const int32_t m = -dn;
+    int64_t x = 2 * ((int64_t)d.x * half + (int64_t)m * n.x);
+    int64_t y = 2 * ((int64_t)d.y * half + (int64_t)m * n.y);
+    int64_t z = 2 * ((int64_t)d.z * half + (int64_t)m * n.z);
     return fx_renorm(x, y, z);
 }
 

@@ -270,7 +270,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         id = TRACE_FIRST(c) ? trace_first(c, org, d, &t)
                             : rt_nearest_primary(s, d, c->primary_cand, &t);
     if (id < 0) {
-        trace_record(c, RT_NO_OBJECT, level, c3_scale_p(s->background, weight));
+        trace_record(c, RT_NO_OBJECT, level,
+                     weight == R_ONE ? s->background : c3_scale_p(s->background, weight));
         return s->background;
     }
     const rt_object *o = &s->objects[id];
@@ -303,8 +304,14 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
      * than any noise octave) so that it cannot saturate however deep the recursion */
     const real travel_max = r_muli(R_SCENE_MAX, 2);
-    travelled = t < r_sub(travel_max, travelled) ? r_add(travelled, t) : travel_max;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c)
+    /* travelled is within [0, travel_max] and t in (0, R_T_MAX): the difference and the sum
+     * taken are in range (r_add_in, the same values as r_sub and r_add) */
+    travelled = t < r_add_in(travel_max, r_neg_in(travelled)) ? r_add_in(travelled, t) : travel_max;
+    /* a material without texture, or with a checker of one colour, is its diffuse colour with
+     * no cell, as rt_texture_color would return: tested here, without the call (half the hits) */
+    const rt_texture *tx = &m->tex;
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c) && tx->kind != RT_TEX_NONE &&
+            (tx->kind != RT_TEX_CHECKER || tx->cells)
         ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
