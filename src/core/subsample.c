@@ -32,32 +32,49 @@ int rt_render_band_count(const rt_params *p, int height)
     return p->mode != RT_MODE_FULL ? ss_count(height, p->grid) : height;
 }
 
+/* The contribution bytes of node j of a sample (rt_hit_rec.contrib). */
+#define SS_CONTRIB(sm, j) ((sm)->hits[j].contrib)
+
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
 {
-    const rt_sample *a = k[0];
-    for (int i = 1; i < 4; i++)
-        if (k[i]->hits[0].object != a->hits[0].object || k[i]->cell != a->cell)
+    const rt_sample *a = k[0], *b = k[1], *c = k[2], *d = k[3];
+    /* The corners' counts, light states, cells and flags as one word each (offsets 12..15):
+     * where all four agree (the usual case), only the primary objects are left to compare
+     * before the ray trees; else the bytes themselves, in the order of the reasons. */
+    const uint32_t wa = a->head, wb = b->head, wc = c->head, wd = d->head;
+    const unsigned o = a->hits[0].object;
+    if (b->hits[0].object != o || c->hits[0].object != o || d->hits[0].object != o)
+        return RT_SPLIT_OBJECT;
+    if ((wa ^ wb) | (wa ^ wc) | (wa ^ wd)) {
+        const unsigned cl = a->cell, li = a->lights;
+        if (b->cell != cl || c->cell != cl || d->cell != cl)
             return RT_SPLIT_OBJECT;
-    for (int i = 1; i < 4; i++)
-        if (k[i]->lights != a->lights)
+        if (b->lights != li || c->lights != li || d->lights != li)
             return RT_SPLIT_LIGHT;
-    int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
-    for (int i = 1; i < 4; i++) {
-        if (k[i]->nhits != a->nhits)
+        const unsigned nh = a->nhits;
+        if (b->nhits != nh || c->nhits != nh || d->nhits != nh)
             return RT_SPLIT_SECONDARY;
-        for (int j = 1; j < n; j++)
-            if (k[i]->hits[j].object != a->hits[j].object ||
-                k[i]->hits[j].level != a->hits[j].level)
-                return RT_SPLIT_SECONDARY;
+    }
+    const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+    for (int j = 1; j < n; j++) {
+        const unsigned ob = a->hits[j].object, lv = a->hits[j].level;
+        if (b->hits[j].object != ob || c->hits[j].object != ob || d->hits[j].object != ob ||
+            b->hits[j].level != lv || c->hits[j].level != lv || d->hits[j].level != lv)
+            return RT_SPLIT_SECONDARY;
     }
     for (int j = 0; j < n; j++) {
+        const uint8_t *pa = SS_CONTRIB(a, j), *pb = SS_CONTRIB(b, j), *pc = SS_CONTRIB(c, j),
+                      *pd = SS_CONTRIB(d, j);
         for (int ch = 0; ch < 3; ch++) {
-            int lo = 255, hi = 0;
-            for (int i = 0; i < 4; i++) {
-                int c = k[i]->hits[j].contrib[ch];
-                lo = c < lo ? c : lo;
-                hi = c > hi ? c : hi;
-            }
+            int lo = pa[ch], hi = lo, v = pb[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+            v = pc[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+            v = pd[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
             if (hi - lo > thr8)
                 return RT_SPLIT_CONTRIB;
         }
@@ -355,9 +372,9 @@ static __attribute__((cold, noinline)) uint8_t ss_cell_at(ss_ctx *c, const rt_ma
  * in the tone of its own cell, looked up where its primary ray meets the plane (ss_tone_at: a
  * ray and a plane test instead of a full shade). Returns 1 when it filled the pixels the square
  * owns (as ss_fill: `cols` x `rows`; points traced before keep their colour), 0 to split.
- * Out of line and compiled for size (cold): its time goes to ss_tone_at's calls. */
-static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, int y0,
-                                                    int w, int h, int own)
+ * Out of line (off ss_square's path), compiled for speed on the board. */
+static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, int y0, int w,
+                                              int h, int own)
 {
     const rt_scene *s = c->scene;
     const int id = sm->hits[0].object, cols = w + (own & 1), rows = h + (own >> 1 & 1);
