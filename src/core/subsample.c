@@ -45,14 +45,19 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
     const unsigned o = a->hits[0].object;
     if (b->hits[0].object != o || c->hits[0].object != o || d->hits[0].object != o)
         return RT_SPLIT_OBJECT;
-    if ((wa ^ wb) | (wa ^ wc) | (wa ^ wd)) {
-        const unsigned cl = a->cell, li = a->lights;
-        if (b->cell != cl || c->cell != cl || d->cell != cl)
+    /* the bytes in which some corner differs from corner 0 */
+    const union {
+        uint32_t w;
+        struct {
+            uint8_t nhits, lights, cell, flags; /* rt_sample's, in its order */
+        } b;
+    } diff = {.w = (wa ^ wb) | (wa ^ wc) | (wa ^ wd)};
+    if (diff.w) {
+        if (diff.b.cell)
             return RT_SPLIT_OBJECT;
-        if (b->lights != li || c->lights != li || d->lights != li)
+        if (diff.b.lights)
             return RT_SPLIT_LIGHT;
-        const unsigned nh = a->nhits;
-        if (b->nhits != nh || c->nhits != nh || d->nhits != nh)
+        if (diff.b.nhits)
             return RT_SPLIT_SECONDARY;
     }
     const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
