@@ -93,23 +93,35 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
  * saturate), so fixed frames are what they were with those calls, at a fraction of the cost;
  * the float build interpolates the same way from its rounded corners. */
 
-/* ss_wq[n][i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's fixed-point
- * value) for 0 <= i < n <= RT_GRID_MAX (below 2^16: 16 bits each), 0 elsewhere: a constant
- * table, no division. */
-#define SS_W(i, n) ((((i) < (n) ? (i) : 0) * 65536 + (n) / 2) / ((n) > 0 ? (n) : 1))
-#define SS_ROW(n) \
-    { \
-        SS_W(0, n), SS_W(1, n), SS_W(2, n), SS_W(3, n), SS_W(4, n), SS_W(5, n), SS_W(6, n), \
-            SS_W(7, n), SS_W(8, n), SS_W(9, n), SS_W(10, n), SS_W(11, n), SS_W(12, n), \
-            SS_W(13, n), SS_W(14, n), SS_W(15, n), SS_W(16, n) \
-    }
+/* ss_wq[n (n - 1) / 2 + i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's
+ * fixed-point value) for 0 <= i < n <= RT_GRID_MAX (below 2^16: 16 bits each), row n after row
+ * n - 1 (ss_wrow): a constant table, no division. */
+#define SS_W(i, n) (((i)*65536 + (n) / 2) / (n))
+#define SS_T1(n) SS_W(0, n)
+#define SS_T2(n) SS_T1(n), SS_W(1, n)
+#define SS_T3(n) SS_T2(n), SS_W(2, n)
+#define SS_T4(n) SS_T3(n), SS_W(3, n)
+#define SS_T5(n) SS_T4(n), SS_W(4, n)
+#define SS_T6(n) SS_T5(n), SS_W(5, n)
+#define SS_T7(n) SS_T6(n), SS_W(6, n)
+#define SS_T8(n) SS_T7(n), SS_W(7, n)
+#define SS_T9(n) SS_T8(n), SS_W(8, n)
+#define SS_T10(n) SS_T9(n), SS_W(9, n)
+#define SS_T11(n) SS_T10(n), SS_W(10, n)
+#define SS_T12(n) SS_T11(n), SS_W(11, n)
+#define SS_T13(n) SS_T12(n), SS_W(12, n)
+#define SS_T14(n) SS_T13(n), SS_W(13, n)
+#define SS_T15(n) SS_T14(n), SS_W(14, n)
+#define SS_T16(n) SS_T15(n), SS_W(15, n)
 #if RT_GRID_MAX != 16
 #error "ss_wq is written out for RT_GRID_MAX 16"
 #endif
-static const uint16_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
-    SS_ROW(0),  SS_ROW(1),  SS_ROW(2),  SS_ROW(3),  SS_ROW(4),  SS_ROW(5),
-    SS_ROW(6),  SS_ROW(7),  SS_ROW(8),  SS_ROW(9),  SS_ROW(10), SS_ROW(11),
-    SS_ROW(12), SS_ROW(13), SS_ROW(14), SS_ROW(15), SS_ROW(16)};
+static const uint16_t ss_wq[RT_GRID_MAX * (RT_GRID_MAX + 1) / 2] = {
+    SS_T1(1), SS_T2(2),   SS_T3(3),   SS_T4(4),   SS_T5(5),   SS_T6(6),   SS_T7(7),   SS_T8(8),
+    SS_T9(9), SS_T10(10), SS_T11(11), SS_T12(12), SS_T13(13), SS_T14(14), SS_T15(15), SS_T16(16)};
+
+/* Row n of ss_wq (0 <= n <= RT_GRID_MAX): i / n at [i], 0 <= i < n. */
+static const uint16_t *ss_wrow(int n) { return ss_wq + ((unsigned)(n * (n - 1)) >> 1); }
 
 /* d * t / 2^16 rounded half away from zero (as r_mul rounds), for |d| <= 65536 and
  * 0 <= t < 65536: the product and its rounding fit in 32 unsigned bits. The result lies between
@@ -162,7 +174,7 @@ static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh
  * row h), in [0, 65536] (ss_mul); pixel i of the row, 0 < i < w, is l + i s with
  * s = ss_mul(r - l, 1 / w) by forward differences (added up in the V form: V_i = V_0 + i 255 s,
  * the same integers); column w is r itself. As |s - (r - l) / w| <= 1/2 + |r - l|
- * |1/w - ss_wq[w][1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
+ * |1/w - ss_wrow(w)[1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
  * value in [0, 65536]: every channel packed lies in [-15, 65551], inside ss_pack's range. */
 static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                     const rt_color *const k[4])
@@ -196,8 +208,8 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                 dst[i] = px;
         return;
     }
-    const uint16_t *wy = ss_wq[h];
-    int32_t sx = ss_wq[w][1];
+    const uint16_t *wy = ss_wrow(h); /* read at 0 < j < h */
+    int32_t sx = w > 1 ? ss_wrow(w)[1] : 0;
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
     int right = cols > w && w > 0;   /* column w: the right edge's colour */
     for (int j = 0; j < rows; j++, dst += stride) {
@@ -252,6 +264,7 @@ typedef struct ss_ctx {
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
+    int split;      /* set when a square of the lattice is split (its points traced) */
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -486,6 +499,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             }
             st->split[li]++;
             st->split_by[why]++;
+            c->split = 1;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
@@ -583,24 +597,35 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             ss_corner_row(&c, bot, ncols, y0 + h);
         c.sy = y0;
         int prev_w = -1;
+        /* The lattice holds no traced point but its corners (the square before was not split
+         * and its left edge held none): then only the corners move. */
+        int clean = 0;
         for (int i = 0; i < ncols; i++) {
             int x0 = ss_corner(i, g, width), w = ss_corner(i + 1, g, width) - x0;
             c.sx = x0;
             rt_sample *row = lat, *hrow = lat + h * ls; /* the lattice's rows 0 and h */
-            for (int ly = 0; ly <= h; ly++, row += ls) {
-                /* The left edge is the square before's right edge: keep what it traced (its
-                 * corners too: they are top[i] and bot[i], copied there before). */
-                if (prev_w >= 0 && row[prev_w].nhits)
-                    row[0] = row[prev_w];
-                else
-                    row[0].nhits = 0;
-                rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
-                for (; q < e; q += 2) {
-                    q[0].nhits = 0;
-                    q[1].nhits = 0;
+            int edge = 0;                               /* traced points inside the left edge */
+            if (clean && w == prev_w) {
+                lat[0] = lat[w];
+                hrow[0] = hrow[w];
+            } else {
+                for (int ly = 0; ly <= h; ly++, row += ls) {
+                    /* The left edge is the square before's right edge: keep what it traced
+                     * (its corners too: they are top[i] and bot[i], copied there before). */
+                    if (prev_w >= 0 && row[prev_w].nhits) {
+                        row[0] = row[prev_w];
+                        edge |= ly != 0 && ly != h;
+                    } else {
+                        row[0].nhits = 0;
+                    }
+                    rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
+                    for (; q < e; q += 2) {
+                        q[0].nhits = 0;
+                        q[1].nhits = 0;
+                    }
+                    if (q == e)
+                        q->nhits = 0;
                 }
-                if (q == e)
-                    q->nhits = 0;
             }
             if (prev_w < 0) {
                 lat[0] = top[i];
@@ -608,7 +633,9 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             }
             lat[w] = top[i + 1];
             hrow[w] = bot[i + 1];
+            c.split = 0;
             ss_square(&c, lat, x0, y0, w, h, 0, (i == ncols - 1) | (r == nrows - 1) << 1);
+            clean = !c.split && !edge;
             prev_w = w;
         }
         rt_sample *t = top;
