@@ -444,21 +444,27 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
     const int cs = RT_GRID_MAX + 1;
     uint8_t cid[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
     for (int d = 4; d >= 1; d >>= 1)
-        for (int j = 0; j <= h; j += d)
-            for (int i = 0; i <= w; i += d) {
-                int mine = i < cols && j < rows;
-                if ((d < 4 && !((i | j) & d)) || (d == 1 && !mine))
-                    continue; /* done at a coarser step, or nobody's neighbour */
-                uint8_t *q = &cid[j * cs + i];
-                const rt_sample *pt = sm + j * c->lstride + i;
+        for (int j = 0; j <= h && (d > 1 || j < rows); j += d) {
+            /* the row's points not done at a coarser step: every d-th, or (a row done at
+             * the coarser step) the odd multiples of d; at step 1 only the square's own */
+            const int dj = j & d & 3, fine = d < 4 && !dj; /* dj: d or 0 (step 4: 0) */
+            const int mrow = j<rows, iend = d> 1 ? w : cols - 1;
+            uint8_t *qrow = &cid[j * cs];
+            const rt_sample *prow = sm + j * c->lstride;
+            uint32_t *drow = dst + (long)j * c->stride;
+            const int step = d << fine;
+            for (int i = fine ? d : 0; i <= iend; i += step) {
+                const int mine = mrow && i < cols;
+                uint8_t *q = &qrow[i];
+                const rt_sample *pt = prow + i;
                 if (pt->nhits) { /* a corner, or a point on the top or left edge */
                     *q = pt->hits[0].object == id ? pt->cell : 0;
                     if (mine)
-                        dst[(long)j * c->stride + i] = ss_pixel(&pt->color);
+                        drow[i] = ss_pixel(&pt->color);
                     continue;
                 }
                 int cell = 0;
-                const int di = i & d, dj = j & d; /* d or 0: the neighbours' offsets */
+                const int di = i & d; /* d or 0: the neighbours' offsets */
                 if (d < 4 && i + di <= w && j + dj <= h) {
                     int a = q[-di - dj * cs], b = q[di + dj * cs];
                     if (di && dj && (q[di - dj * cs] != a || q[dj * cs - di] != a))
@@ -469,8 +475,9 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
                     cell = ss_cell_at(c, m, id, x0 + i, y0 + j);
                 *q = (uint8_t)cell;
                 if (mine && cell && rt_cell_tone((uint8_t)cell))
-                    dst[(long)j * c->stride + i] = other[j * cs + i];
+                    drow[i] = other[j * cs + i];
             }
+        }
     return 1;
 }
 
