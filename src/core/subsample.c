@@ -209,7 +209,7 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         return;
     }
     const uint16_t *wy = ss_wrow(h); /* read at 0 < j < h */
-    int32_t sx = w > 1 ? ss_wrow(w)[1] : 0;
+    int32_t sx = ss_wrow(w)[1];      /* w <= 1: ss_wq[1], 0 (unused) */
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
     int right = cols > w && w > 0;   /* column w: the right edge's colour */
     for (int j = 0; j < rows; j++, dst += stride) {
@@ -265,6 +265,13 @@ typedef struct ss_ctx {
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
     int split;      /* set when a square of the lattice is split (its points traced) */
+    /* How ss_quad's points are traced: in adaptive mode, within a top-level square of the
+     * full grid, as full mode traces them (p_quad, without the other tone of a checker,
+     * rt_sample.alt), since no square ever has one of them as a corner: they lie at odd
+     * offsets, where every square split further has its corners at even ones (sizes are
+     * powers of two); else as the others (params). */
+    const rt_params *quad;
+    rt_params p_quad;
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -351,11 +358,14 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
     const int ls = c->lstride, stride = c->stride;
     uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
     rt_sample *m = sm + ls;
+    const rt_params *p = c->params;
+    c->params = c->quad; /* see ss_ctx */
     ss_need(c, x0 + 1, y0, sm + 1);
     ss_need(c, x0, y0 + 1, m);
     ss_need(c, x0 + 1, y0 + 1, m + 1);
     ss_need(c, x0 + 2, y0 + 1, m + 2);
     ss_need(c, x0 + 1, y0 + 2, m + ls + 1);
+    c->params = p;
     row[0] = ss_pixel(&sm->color);
     row[1] = ss_pixel(&sm[1].color);
     row[stride] = ss_pixel(&m->color);
@@ -579,10 +589,13 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .py0 = mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
                 .traced = traced,
                 .thr8 = r_to_byte(p->threshold),
-                .lstride = g + 1};
+                .lstride = g + 1,
+                .p_quad = *p};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = r_from_ratio(i, n);
+    if (p->mode == RT_MODE_ADAPTIVE)
+        c.p_quad.mode = RT_MODE_FULL;
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
@@ -641,6 +654,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             lat[w] = top[i + 1];
             hrow[w] = bot[i + 1];
             c.split = 0;
+            c.quad = w == g && h == g ? &c.p_quad : p;
             ss_square(&c, lat, x0, y0, w, h, 0, (i == ncols - 1) | (r == nrows - 1) << 1);
             clean = !c.split && !edge;
             prev_w = w;
