@@ -214,10 +214,15 @@ typedef struct rt_hit_rec {
  * small (60 bytes) because a row of squares' worth of them is the working storage. */
 typedef struct rt_sample {
     rt_color color;
-    uint8_t nhits;  /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
-    uint8_t lights; /* at the primary hit, 2 bits per light (rt_light_state): one compare */
-    uint8_t cell;   /* texture cell at the primary hit (checker), 0 for other textures */
-    uint8_t flags;  /* probe mode: RT_SAMPLE_PROBED, RT_SAMPLE_OPAQUE (0 in other modes) */
+    union {
+        struct {
+            uint8_t nhits;  /* nodes of the ray tree (saturates at 255); 0 = not traced yet */
+            uint8_t lights; /* at the primary hit, 2 bits per light (rt_light_state) */
+            uint8_t cell;   /* texture cell at the primary hit (checker), 0 for other textures */
+            uint8_t flags;  /* probe mode: RT_SAMPLE_PROBED, RT_SAMPLE_OPAQUE (0 in other modes) */
+        };
+        uint32_t head; /* the four bytes above as one word: rt_corners_differ's first compare */
+    };
     rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
     /* alt_known 1 (adaptive mode, a primary hit on a two-tone checker seen from the prepared
      * eye): alt is the colour the point would have in a cell of the other colour (the same

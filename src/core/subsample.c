@@ -32,32 +32,54 @@ int rt_render_band_count(const rt_params *p, int height)
     return p->mode != RT_MODE_FULL ? ss_count(height, p->grid) : height;
 }
 
+/* The contribution bytes of node j of a sample (rt_hit_rec.contrib). */
+#define SS_CONTRIB(sm, j) ((sm)->hits[j].contrib)
+
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
 {
-    const rt_sample *a = k[0];
-    for (int i = 1; i < 4; i++)
-        if (k[i]->hits[0].object != a->hits[0].object || k[i]->cell != a->cell)
+    const rt_sample *a = k[0], *b = k[1], *c = k[2], *d = k[3];
+    /* The corners' counts, light states, cells and flags as one word each (offsets 12..15):
+     * where all four agree (the usual case), only the primary objects are left to compare
+     * before the ray trees; else the bytes themselves, in the order of the reasons. */
+    const uint32_t wa = a->head, wb = b->head, wc = c->head, wd = d->head;
+    const unsigned o = a->hits[0].object;
+    if (b->hits[0].object != o || c->hits[0].object != o || d->hits[0].object != o)
+        return RT_SPLIT_OBJECT;
+    /* the bytes in which some corner differs from corner 0 */
+    const union {
+        uint32_t w;
+        struct {
+            uint8_t nhits, lights, cell, flags; /* rt_sample's, in its order */
+        } b;
+    } diff = {.w = (wa ^ wb) | (wa ^ wc) | (wa ^ wd)};
+    if (diff.w) {
+        if (diff.b.cell)
             return RT_SPLIT_OBJECT;
-    for (int i = 1; i < 4; i++)
-        if (k[i]->lights != a->lights)
+        if (diff.b.lights)
             return RT_SPLIT_LIGHT;
-    int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
-    for (int i = 1; i < 4; i++) {
-        if (k[i]->nhits != a->nhits)
+        if (diff.b.nhits)
             return RT_SPLIT_SECONDARY;
-        for (int j = 1; j < n; j++)
-            if (k[i]->hits[j].object != a->hits[j].object ||
-                k[i]->hits[j].level != a->hits[j].level)
-                return RT_SPLIT_SECONDARY;
+    }
+    const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+    for (int j = 1; j < n; j++) {
+        const unsigned ob = a->hits[j].object, lv = a->hits[j].level;
+        if (b->hits[j].object != ob || c->hits[j].object != ob || d->hits[j].object != ob ||
+            b->hits[j].level != lv || c->hits[j].level != lv || d->hits[j].level != lv)
+            return RT_SPLIT_SECONDARY;
     }
     for (int j = 0; j < n; j++) {
+        const uint8_t *pa = SS_CONTRIB(a, j), *pb = SS_CONTRIB(b, j), *pc = SS_CONTRIB(c, j),
+                      *pd = SS_CONTRIB(d, j);
         for (int ch = 0; ch < 3; ch++) {
-            int lo = 255, hi = 0;
-            for (int i = 0; i < 4; i++) {
-                int c = k[i]->hits[j].contrib[ch];
-                lo = c < lo ? c : lo;
-                hi = c > hi ? c : hi;
-            }
+            int lo = pa[ch], hi = lo, v = pb[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+            v = pc[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+            v = pd[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
             if (hi - lo > thr8)
                 return RT_SPLIT_CONTRIB;
         }
@@ -71,23 +93,35 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
  * saturate), so fixed frames are what they were with those calls, at a fraction of the cost;
  * the float build interpolates the same way from its rounded corners. */
 
-/* ss_wq[n][i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's fixed-point
- * value) for 0 <= i < n <= RT_GRID_MAX (below 2^16: 16 bits each), 0 elsewhere: a constant
- * table, no division. */
-#define SS_W(i, n) ((((i) < (n) ? (i) : 0) * 65536 + (n) / 2) / ((n) > 0 ? (n) : 1))
-#define SS_ROW(n) \
-    { \
-        SS_W(0, n), SS_W(1, n), SS_W(2, n), SS_W(3, n), SS_W(4, n), SS_W(5, n), SS_W(6, n), \
-            SS_W(7, n), SS_W(8, n), SS_W(9, n), SS_W(10, n), SS_W(11, n), SS_W(12, n), \
-            SS_W(13, n), SS_W(14, n), SS_W(15, n), SS_W(16, n) \
-    }
+/* ss_wq[n (n - 1) / 2 + i] = i / n as a Q16.16 integer rounded to nearest (r_from_ratio's
+ * fixed-point value) for 0 <= i < n <= RT_GRID_MAX (below 2^16: 16 bits each), row n after row
+ * n - 1 (ss_wrow): a constant table, no division. */
+#define SS_W(i, n) (((i)*65536 + (n) / 2) / (n))
+#define SS_T1(n) SS_W(0, n)
+#define SS_T2(n) SS_T1(n), SS_W(1, n)
+#define SS_T3(n) SS_T2(n), SS_W(2, n)
+#define SS_T4(n) SS_T3(n), SS_W(3, n)
+#define SS_T5(n) SS_T4(n), SS_W(4, n)
+#define SS_T6(n) SS_T5(n), SS_W(5, n)
+#define SS_T7(n) SS_T6(n), SS_W(6, n)
+#define SS_T8(n) SS_T7(n), SS_W(7, n)
+#define SS_T9(n) SS_T8(n), SS_W(8, n)
+#define SS_T10(n) SS_T9(n), SS_W(9, n)
+#define SS_T11(n) SS_T10(n), SS_W(10, n)
+#define SS_T12(n) SS_T11(n), SS_W(11, n)
+#define SS_T13(n) SS_T12(n), SS_W(12, n)
+#define SS_T14(n) SS_T13(n), SS_W(13, n)
+#define SS_T15(n) SS_T14(n), SS_W(14, n)
+#define SS_T16(n) SS_T15(n), SS_W(15, n)
 #if RT_GRID_MAX != 16
 #error "ss_wq is written out for RT_GRID_MAX 16"
 #endif
-static const uint16_t ss_wq[RT_GRID_MAX + 1][RT_GRID_MAX + 1] = {
-    SS_ROW(0),  SS_ROW(1),  SS_ROW(2),  SS_ROW(3),  SS_ROW(4),  SS_ROW(5),
-    SS_ROW(6),  SS_ROW(7),  SS_ROW(8),  SS_ROW(9),  SS_ROW(10), SS_ROW(11),
-    SS_ROW(12), SS_ROW(13), SS_ROW(14), SS_ROW(15), SS_ROW(16)};
+static const uint16_t ss_wq[RT_GRID_MAX * (RT_GRID_MAX + 1) / 2] = {
+    SS_T1(1), SS_T2(2),   SS_T3(3),   SS_T4(4),   SS_T5(5),   SS_T6(6),   SS_T7(7),   SS_T8(8),
+    SS_T9(9), SS_T10(10), SS_T11(11), SS_T12(12), SS_T13(13), SS_T14(14), SS_T15(15), SS_T16(16)};
+
+/* Row n of ss_wq (0 <= n <= RT_GRID_MAX): i / n at [i], 0 <= i < n. */
+static const uint16_t *ss_wrow(int n) { return ss_wq + ((unsigned)(n * (n - 1)) >> 1); }
 
 /* d * t / 2^16 rounded half away from zero (as r_mul rounds), for |d| <= 65536 and
  * 0 <= t < 65536: the product and its rounding fit in 32 unsigned bits. The result lies between
@@ -140,7 +174,7 @@ static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh
  * row h), in [0, 65536] (ss_mul); pixel i of the row, 0 < i < w, is l + i s with
  * s = ss_mul(r - l, 1 / w) by forward differences (added up in the V form: V_i = V_0 + i 255 s,
  * the same integers); column w is r itself. As |s - (r - l) / w| <= 1/2 + |r - l|
- * |1/w - ss_wq[w][1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
+ * |1/w - ss_wrow(w)[1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
  * value in [0, 65536]: every channel packed lies in [-15, 65551], inside ss_pack's range. */
 static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                     const rt_color *const k[4])
@@ -174,8 +208,8 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                 dst[i] = px;
         return;
     }
-    const uint16_t *wy = ss_wq[h];
-    int32_t sx = ss_wq[w][1];
+    const uint16_t *wy = ss_wrow(h); /* read at 0 < j < h */
+    int32_t sx = ss_wrow(w)[1];      /* w <= 1: ss_wq[1], 0 (unused) */
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
     int right = cols > w && w > 0;   /* column w: the right edge's colour */
     for (int j = 0; j < rows; j++, dst += stride) {
@@ -230,6 +264,14 @@ typedef struct ss_ctx {
     rt_sample *lat; /* samples of the current square, (grid + 1)^2, row-major */
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
+    int split;      /* set when a square of the lattice is split (its points traced) */
+    /* How ss_quad's points are traced: in adaptive mode, within a top-level square of the
+     * full grid, as full mode traces them (p_quad, without the other tone of a checker,
+     * rt_sample.alt), since no square ever has one of them as a corner: they lie at odd
+     * offsets, where every square split further has its corners at even ones (sizes are
+     * powers of two); else as the others (params). */
+    const rt_params *quad;
+    rt_params p_quad;
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -316,11 +358,14 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
     const int ls = c->lstride, stride = c->stride;
     uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
     rt_sample *m = sm + ls;
+    const rt_params *p = c->params;
+    c->params = c->quad; /* see ss_ctx */
     ss_need(c, x0 + 1, y0, sm + 1);
     ss_need(c, x0, y0 + 1, m);
     ss_need(c, x0 + 1, y0 + 1, m + 1);
     ss_need(c, x0 + 2, y0 + 1, m + 2);
     ss_need(c, x0 + 1, y0 + 2, m + ls + 1);
+    c->params = p;
     row[0] = ss_pixel(&sm->color);
     row[1] = ss_pixel(&sm[1].color);
     row[stride] = ss_pixel(&m->color);
@@ -355,9 +400,9 @@ static __attribute__((cold, noinline)) uint8_t ss_cell_at(ss_ctx *c, const rt_ma
  * in the tone of its own cell, looked up where its primary ray meets the plane (ss_tone_at: a
  * ray and a plane test instead of a full shade). Returns 1 when it filled the pixels the square
  * owns (as ss_fill: `cols` x `rows`; points traced before keep their colour), 0 to split.
- * Out of line and compiled for size (cold): its time goes to ss_tone_at's calls. */
-static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, int y0,
-                                                    int w, int h, int own)
+ * Out of line (off ss_square's path), compiled for speed on the board. */
+static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, int y0, int w,
+                                              int h, int own)
 {
     const rt_scene *s = c->scene;
     const int id = sm->hits[0].object, cols = w + (own & 1), rows = h + (own >> 1 & 1);
@@ -409,21 +454,27 @@ static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *
     const int cs = RT_GRID_MAX + 1;
     uint8_t cid[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
     for (int d = 4; d >= 1; d >>= 1)
-        for (int j = 0; j <= h; j += d)
-            for (int i = 0; i <= w; i += d) {
-                int mine = i < cols && j < rows;
-                if ((d < 4 && !((i | j) & d)) || (d == 1 && !mine))
-                    continue; /* done at a coarser step, or nobody's neighbour */
-                uint8_t *q = &cid[j * cs + i];
-                const rt_sample *pt = sm + j * c->lstride + i;
+        for (int j = 0; j <= h && (d > 1 || j < rows); j += d) {
+            /* the row's points not done at a coarser step: every d-th, or (a row done at
+             * the coarser step) the odd multiples of d; at step 1 only the square's own */
+            const int dj = j & d & 3, fine = d < 4 && !dj; /* dj: d or 0 (step 4: 0) */
+            const int mrow = j<rows, iend = d> 1 ? w : cols - 1;
+            uint8_t *qrow = &cid[j * cs];
+            const rt_sample *prow = sm + j * c->lstride;
+            uint32_t *drow = dst + (long)j * c->stride;
+            const int step = d << fine;
+            for (int i = fine ? d : 0; i <= iend; i += step) {
+                const int mine = mrow && i < cols;
+                uint8_t *q = &qrow[i];
+                const rt_sample *pt = prow + i;
                 if (pt->nhits) { /* a corner, or a point on the top or left edge */
                     *q = pt->hits[0].object == id ? pt->cell : 0;
                     if (mine)
-                        dst[(long)j * c->stride + i] = ss_pixel(&pt->color);
+                        drow[i] = ss_pixel(&pt->color);
                     continue;
                 }
                 int cell = 0;
-                const int di = i & d, dj = j & d; /* d or 0: the neighbours' offsets */
+                const int di = i & d; /* d or 0: the neighbours' offsets */
                 if (d < 4 && i + di <= w && j + dj <= h) {
                     int a = q[-di - dj * cs], b = q[di + dj * cs];
                     if (di && dj && (q[di - dj * cs] != a || q[dj * cs - di] != a))
@@ -434,8 +485,9 @@ static __attribute__((cold, noinline)) int ss_cells(ss_ctx *c, const rt_sample *
                     cell = ss_cell_at(c, m, id, x0 + i, y0 + j);
                 *q = (uint8_t)cell;
                 if (mine && cell && rt_cell_tone((uint8_t)cell))
-                    dst[(long)j * c->stride + i] = other[j * cs + i];
+                    drow[i] = other[j * cs + i];
             }
+        }
     return 1;
 }
 
@@ -464,6 +516,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             }
             st->split[li]++;
             st->split_by[why]++;
+            c->split = 1;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
@@ -536,10 +589,13 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                 .py0 = mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
                 .traced = traced,
                 .thr8 = r_to_byte(p->threshold),
-                .lstride = g + 1};
+                .lstride = g + 1,
+                .p_quad = *p};
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = r_from_ratio(i, n);
+    if (p->mode == RT_MODE_ADAPTIVE)
+        c.p_quad.mode = RT_MODE_FULL;
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
@@ -561,24 +617,35 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             ss_corner_row(&c, bot, ncols, y0 + h);
         c.sy = y0;
         int prev_w = -1;
+        /* The lattice holds no traced point but its corners (the square before was not split
+         * and its left edge held none): then only the corners move. */
+        int clean = 0;
         for (int i = 0; i < ncols; i++) {
             int x0 = ss_corner(i, g, width), w = ss_corner(i + 1, g, width) - x0;
             c.sx = x0;
             rt_sample *row = lat, *hrow = lat + h * ls; /* the lattice's rows 0 and h */
-            for (int ly = 0; ly <= h; ly++, row += ls) {
-                /* The left edge is the square before's right edge: keep what it traced (its
-                 * corners too: they are top[i] and bot[i], copied there before). */
-                if (prev_w >= 0 && row[prev_w].nhits)
-                    row[0] = row[prev_w];
-                else
-                    row[0].nhits = 0;
-                rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
-                for (; q < e; q += 2) {
-                    q[0].nhits = 0;
-                    q[1].nhits = 0;
+            int edge = 0;                               /* traced points inside the left edge */
+            if (clean && w == prev_w) {
+                lat[0] = lat[w];
+                hrow[0] = hrow[w];
+            } else {
+                for (int ly = 0; ly <= h; ly++, row += ls) {
+                    /* The left edge is the square before's right edge: keep what it traced
+                     * (its corners too: they are top[i] and bot[i], copied there before). */
+                    if (prev_w >= 0 && row[prev_w].nhits) {
+                        row[0] = row[prev_w];
+                        edge |= ly != 0 && ly != h;
+                    } else {
+                        row[0].nhits = 0;
+                    }
+                    rt_sample *q = row + 1, *e = row + w; /* columns 1..w, two at a time */
+                    for (; q < e; q += 2) {
+                        q[0].nhits = 0;
+                        q[1].nhits = 0;
+                    }
+                    if (q == e)
+                        q->nhits = 0;
                 }
-                if (q == e)
-                    q->nhits = 0;
             }
             if (prev_w < 0) {
                 lat[0] = top[i];
@@ -586,7 +653,10 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             }
             lat[w] = top[i + 1];
             hrow[w] = bot[i + 1];
+            c.split = 0;
+            c.quad = w == g && h == g ? &c.p_quad : p;
             ss_square(&c, lat, x0, y0, w, h, 0, (i == ncols - 1) | (r == nrows - 1) << 1);
+            clean = !c.split && !edge;
             prev_w = w;
         }
         rt_sample *t = top;

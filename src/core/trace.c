@@ -373,10 +373,8 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .mirror = at_eye ? v->mirror_plane : -1,
                    .mirror_cand = rt_view_mirror_candidates(v, x, y),
                    .alt = alt};
-    out->nhits = 0;
+    out->head = 0; /* nhits, lights, cell; flags, which the callers set after */
     out->alt_known = 0;
-    out->cell = 0;
-    out->lights = 0;
     dir3 d;
     if (RT_COMPILED_PROBE && pri) {
         if (pri->id == RT_PRIMARY_UNKNOWN)
