@@ -87,6 +87,17 @@ for real in fixed float; do
   fi
 done
 
+# The fixed player at 24 s (frame 600: noise textures, the two-tone floor's texture squares, the
+# mirror cull): the size-built player still renders what rt-fixed renders.
+shot=$T/intro-fixed-600.png
+if xrun "$B/intro-fixed" --frames 601 --size 320x240 --screenshot "$shot" >"$T/intro-fixed-600.log" 2>&1 &&
+    "$B/rt-fixed" render --frame 600 -o "$T/render-fixed-600.png" 2>/dev/null &&
+    grep -q 'differing=0 ' <<<"$("$B/rt-cmp" "$shot" "$T/render-fixed-600.png" 2>&1)"; then
+  pass "build/intro-fixed --frames 601 under Xvfb: screenshot = render --frame 600"
+else
+  fail "build/intro-fixed --frames 601: screenshot differs from render --frame 600: $(tail -2 "$T/intro-fixed-600.log" | tr '\n' ' ')"
+fi
+
 # One option table (src/app/cli.c): the intro player and `rt-* play` take the same command line,
 # here in the --opt=value form with a size written WXH, and show the same frame.
 for real in fixed float; do
