@@ -913,8 +913,8 @@ static void test_one_tone_checker(void **state)
     rt_scene_prepare(&plain);
     rt_scene_prepare(&one);
     rt_scene_prepare(&two);
-    assert_int_equal(one.materials[0].tex.cells, 0);
-    assert_int_equal(two.materials[0].tex.cells, 1);
+    assert_int_equal(one.materials[0].tex.active, 0);
+    assert_int_equal(two.materials[0].tex.active, 1);
     rt_view v;
     rt_view_init(&v, &plain.camera, W, H);
     for (int mode = RT_MODE_ADAPTIVE; mode <= RT_MODE_PROBE; mode++) {
@@ -958,7 +958,7 @@ static void test_checker_cells(void **state)
     s.lights[0].pos = vd(1, 12, -4);
     s.camera = (rt_camera){vd(0, 5, 5), vd(0, 0, -1), vd(0, 1, 0), from_d(50)}; /* no horizon */
     rt_scene_prepare(&s);
-    assert_int_equal(s.materials[mf].tex.cells, 1);
+    assert_int_equal(s.materials[mf].tex.active, 1);
     plain = s; /* the same floor without its checker */
     plain.materials[mf].tex.kind = RT_TEX_NONE;
     rt_scene_prepare(&plain);

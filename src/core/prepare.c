@@ -62,7 +62,7 @@ static void scene_derive_effects(rt_scene *s)
             fx |= RT_FX_REFRACT | RT_FX_REFLECT; /* total internal reflection */
         if (m->reflect > 0)
             fx |= RT_FX_REFLECT;
-        if (m->tex.kind != RT_TEX_NONE && (m->tex.kind != RT_TEX_CHECKER || m->tex.cells))
+        if (m->tex.active)
             fx |= RT_FX_TEXTURE;
         if (m->tex.kind == RT_TEX_MARBLE || m->tex.kind == RT_TEX_WOOD ||
             m->tex.kind == RT_TEX_NOISE)
@@ -393,11 +393,11 @@ void rt_scene_prepare(rt_scene *s)
         m->spec_zero = m->specular > 0 ? scene_spec_zero(m->shininess) : 0;
         m->ambient_term = c3_scale_p(c3_mul_p(m->diffuse, s->ambient), m->ambient);
         /* A checkerboard whose colours are equal (the intro's floor until its second colour is
-         * keyed away) has no edges: its cells are not told apart, so subsampling does not
-         * split squares along them. */
-        m->tex.cells = m->tex.kind == RT_TEX_CHECKER &&
-            (m->tex.color2.x != m->diffuse.x || m->tex.color2.y != m->diffuse.y ||
-             m->tex.color2.z != m->diffuse.z);
+         * keyed away) is its diffuse colour and has no edges: its cells are not told apart, so
+         * subsampling does not split squares along them. */
+        m->tex.active = m->tex.kind != RT_TEX_NONE &&
+            (m->tex.kind != RT_TEX_CHECKER || m->tex.color2.x != m->diffuse.x ||
+             m->tex.color2.y != m->diffuse.y || m->tex.color2.z != m->diffuse.z);
     }
     s->near_lights = 0;
     real cone[RT_MAX_LIGHTS][RT_MAX_OBJECTS];

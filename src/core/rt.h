@@ -41,8 +41,9 @@ typedef struct rt_texture {
     uint8_t kind;    /* enum rt_texture_kind */
     uint8_t palette; /* enum rt_palette_id */
     uint8_t octaves; /* noise octaves, 1..RT_NOISE_MAX_OCTAVES */
-    uint8_t cells;   /* checker, set each frame by rt_scene_prepare: 1 when its two colours
-                        differ, 0 when they are equal (no cell edge to see: no cells) */
+    uint8_t active;  /* set each frame by rt_scene_prepare: 1 when the texture changes the
+                        colour (a noise texture, a checker whose two colours differ); 0 for none,
+                        or a checker of one colour (no cell edge to see: no cells either) */
     real scale;      /* texture features per scene unit */
     real turbulence; /* strength of the noise disturbance */
     rt_color color2; /* second colour of the checkerboard */

@@ -7,8 +7,8 @@ rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real fo
 {
     const rt_texture *tx = &m->tex;
     *cell = 0;
-    if (tx->kind == RT_TEX_NONE || (tx->kind == RT_TEX_CHECKER && !tx->cells))
-        return m->diffuse; /* a checker of one colour (rt_scene_prepare) has no cells */
+    if (!tx->active)
+        return m->diffuse; /* no texture, or a checker of one colour (rt_scene_prepare) */
 
     /* q = p * scale has |q| <= 20000 for noise textures and 32000 for the checker (the parser
      * bounds the texture scale by the farthest point the material can be seen at): the products

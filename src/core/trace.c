@@ -307,11 +307,9 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* travelled is within [0, travel_max] and t in (0, R_T_MAX): the difference and the sum
      * taken are in range (r_add_in, the same values as r_sub and r_add) */
     travelled = t < r_add_in(travel_max, r_neg_in(travelled)) ? r_add_in(travelled, t) : travel_max;
-    /* a material without texture, or with a checker of one colour, is its diffuse colour with
-     * no cell, as rt_texture_color would return: tested here, without the call (half the hits) */
-    const rt_texture *tx = &m->tex;
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c) && tx->kind != RT_TEX_NONE &&
-            (tx->kind != RT_TEX_CHECKER || tx->cells)
+    /* a material whose texture is not active (none, or a checker of one colour) is its diffuse
+     * colour with no cell, as rt_texture_color would return: tested here, without the call */
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c) && m->tex.active
         ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
