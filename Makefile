@@ -103,7 +103,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
+        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -271,9 +271,9 @@ ARM_ELF_FIXED16 := $(BUILD)/arm/intro-fixed16.elf
 define arm_variant
 ARM_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/%.o,$(ARM_SRCS)) $(BUILD)/obj/arm-$(1)/start.o
 
-$(BUILD)/obj/arm-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$(BUILD)/obj/arm-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$(ARM_CC) $(BASE_CFLAGS) $$(or $$(ARM_COLD_OPT),$(OPT)) $(ARM_CFLAGS) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(4) $$(ARM_FILE_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 
 $(BUILD)/obj/arm-$(1)/start.o: platform/arm/start.S
 	@mkdir -p $$(@D)
@@ -295,9 +295,25 @@ endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
-# The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
-# counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o $(BUILD)/obj/arm-$(r)/src/core/probe.o $(BUILD)/obj/arm-$(r)/platform/board.o): ARM_COLD_OPT := -Os
+# Built for size, which keeps the fixed image within its 64 KiB: code that runs once per command or
+# once per frame before the counted rendering starts, and probe.c. ARM_COLD_SRCS are Thumb at -Os
+# (a quarter smaller than ARM code at -Os; the ARM926 runs both, the linker makes the calls between
+# them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 760 B
+# smaller than ARM -Os for about 3,700 instructions more a frame, uncounted). ARM_SMALL_SRCS are
+# ARM code at -Os: rt_scene_prepare and the camera's rt_view_init/rt_view_cull (64-bit arithmetic,
+# which Thumb-1 does through library calls: Thumb would save 580 B for 63,000 instructions more a
+# frame) and probe.c (rendering code of --mode probe, at -Os since docs/probe.md measured it).
+# `make qemu-profile` shows no function of the other files inside the frames. tests/scene_programs.sh
+# builds its ARM images with the same flags (make arm-file-flags).
+ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c
+ARM_COLD_CFLAGS := -Os -mthumb
+ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c src/core/camera.c
+ARM_SMALL_CFLAGS := -Os
+$(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_COLD_SRCS))): ARM_FILE_CFLAGS := $(ARM_COLD_CFLAGS)
+$(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_SMALL_SRCS))): ARM_FILE_CFLAGS := $(ARM_SMALL_CFLAGS)
+# One `FILE FLAGS` line per ARM source built with flags of its own (tests/scene_programs.sh).
+arm-file-flags:
+	@$(foreach f,$(ARM_COLD_SRCS),echo '$(f) $(ARM_COLD_CFLAGS)';) $(foreach f,$(ARM_SMALL_SRCS),echo '$(f) $(ARM_SMALL_CFLAGS)';)
 
 # The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.
 PROFILE_PLUGIN := $(BUILD)/arm/qemu_profile.so
