@@ -218,13 +218,17 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # functions dropped, no unwind tables, the hot tracer (shading, shapes) at -O2 and the rest at -Os
 # (subsampling, textures and noise too: the player needs the room; a desktop has speed to spare).
 # The stripped file grows a page (4 KiB) at once when the code reaches the page its data starts
-# on: readelf -lW build/intro-fixed shows how much room is left (code end against RW start).
+# on: the build prints how much room is left (readelf -lW build/intro-fixed: code end against RW
+# start).
+# Compiled -fno-pie, as they are linked (-no-pie): absolute addresses in the code (a 5-byte mov
+# where position-independent code takes a 7-byte lea), constant tables of pointers read-only
+# data instead of relocated data.
 PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/probe.c
 PLAYER_COLD := src/core/subsample.c src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
-                 -fno-unwind-tables -fno-stack-protector -DRT_COMPILED_PROBE=0
+                 -fno-unwind-tables -fno-stack-protector -fno-pie -DRT_COMPILED_PROBE=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
@@ -232,19 +236,22 @@ PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
 # $(1) real, $(2) REAL_FIXED, $(3) libfixmath archive or empty
 define player
 PLAYER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT) $(PLAYER_COLD))
-$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $(PLAYER_CFLAGS) -O2 $(if $(filter 1,$(2)),$(FIXED_CORE_GUARD)) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
-$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $(PLAYER_CFLAGS) -Os $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 $(BUILD)/intro-$(1): $$(PLAYER_OBJS_$(1)) $$(if $(3),$(BUILD)/obj/player-$(1)/libfixmath.a)
 	$$(CC) $(PLAYER_LDFLAGS) -o $$@ $$^ $$(LIBS)
-	@strip -o $$@.stripped $$@ && printf 'player %s: %d bytes stripped (limit %d)\n' $$@ $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) && rm -f $$@.stripped
-# libfixmath as rt-fixed has it (-O2), one section per function: the unused ones are dropped.
-$(BUILD)/obj/player-$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@strip -o $$@.stripped $$@ && set -- $$$$(readelf -lW $$@ | awk '$$$$1 == "LOAD" { print $$$$2, $$$$5 }') && \
+	  printf 'player %s: %d bytes stripped (limit %d), %d bytes of code room before the file grows a page\n' $$@ \
+	    $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) $$$$(($$$$3 - $$$$1 - $$$$2)) && rm -f $$@.stripped
+# libfixmath at -Os (rt-fixed has it at -O2; a desktop has speed to spare), one section per
+# function: the unused ones are dropped.
+$(BUILD)/obj/player-$(1)/libfixmath/%.o: $(FIXMATH_STAMP) Makefile
 	@mkdir -p $$(@D)
-	$$(CC) -std=c11 $(OPT) -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+	$$(CC) -std=c11 -Os -ffunction-sections -fdata-sections -fno-pie $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
 $(BUILD)/obj/player-$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/player-$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
 	rm -f $$@ && ar rcs $$@ $$^
 -include $$(PLAYER_OBJS_$(1):.o=.d)
