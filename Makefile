@@ -222,13 +222,14 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # start).
 # Compiled -fno-pie, as they are linked (-no-pie): absolute addresses in the code (a 5-byte mov
 # where position-independent code takes a 7-byte lea), constant tables of pointers read-only
-# data instead of relocated data.
+# data instead of relocated data; -fno-plt: calls into SDL2, libpng and libc go through the GOT
+# (bound at start-up), with no PLT stubs.
 PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/probe.c
 PLAYER_COLD := src/core/subsample.c src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
-                 -fno-unwind-tables -fno-stack-protector -fno-pie -DRT_COMPILED_PROBE=0
+                 -fno-unwind-tables -fno-stack-protector -fno-pie -fno-plt -DRT_COMPILED_PROBE=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
@@ -305,8 +306,8 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # Built for size, which keeps the fixed image within its 64 KiB: code that runs once per command or
 # once per frame before the counted rendering starts, and probe.c. ARM_COLD_SRCS are Thumb at -Os
 # (a quarter smaller than ARM code at -Os; the ARM926 runs both, the linker makes the calls between
-# them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 760 B
-# smaller than ARM -Os for about 3,700 instructions more a frame, uncounted). ARM_SMALL_SRCS are
+# them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 790 B
+# smaller than ARM -Os for about 2,000 instructions more a frame, uncounted). ARM_SMALL_SRCS are
 # ARM code at -Os: rt_scene_prepare and the camera's rt_view_init/rt_view_cull (64-bit arithmetic,
 # which Thumb-1 does through library calls: Thumb would save 580 B for 63,000 instructions more a
 # frame) and probe.c (rendering code of --mode probe, at -Os since docs/probe.md measured it).
