@@ -205,5 +205,6 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
     }
     out->color = col;
     out->flags = RT_SAMPLE_PROBED;
+    out->alt_known = 0; /* its other tone is not known: no corner of a texture square */
     return 1;
 }

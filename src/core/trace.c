@@ -354,10 +354,9 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
 {
     int at_eye = v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
     int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
-    /* adaptive mode (probe mode is adaptive where it is not compiled in), from the prepared eye
-     * (the primary hit as ss_cells finds it again, with rt_nearest_primary) */
-    const int alt = eye_prepared == 1 && p->mode != RT_MODE_FULL &&
-        !(RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE);
+    /* adaptive and probe mode's full shades (not probes), from the prepared eye (the primary
+     * hit as ss_cells finds it again, with rt_nearest_primary; trace_first finds it so too) */
+    const int alt = at_eye && p->mode != RT_MODE_FULL && !probe;
     trace_ctx c = {.scene = s,
                    .stats = stats,
                    .sample = out,
