@@ -155,7 +155,7 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
      * states would take a shadow ray per light, and where every context sample casts secondary
      * rays (and an edge's two ends differ in them), its ray tree would take those rays again:
      * its full shade but for the colour, so the probe would cost more than it saves. */
-    unsigned opaque = k[0]->flags & k[1]->flags, lights = 0, flat = 0;
+    unsigned opaque = k[0]->flags & k[1]->flags, lights = 0, flat = 0, agreed = 0;
     for (int i = 0; i < n; i++) {
         opaque &= k[i]->flags;
         lights |= k[i]->lights ^ k[0]->lights;
@@ -169,6 +169,7 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
     } else if (rt_probe_same(k[0], k[1])) {
         if (!probe_agree(2, k, 3u, thr8))
             return -1;
+        agreed = 1; /* the edge's ends agree: a point matching both needs no more test */
     } else if (!flat ||
                (span > RT_PROBE_ONE_SPAN &&
                 (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell))) {
@@ -204,7 +205,7 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
      * contributions agree. */
     int single = !(m & (m - 1));
     if ((single && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
-        (!single && !probe_agree(n, k, m, thr8)))
+        (!single && !agreed && !probe_agree(n, k, m, thr8)))
         return 0;
 
     /* The record is f's, the colour interpolated from the matching samples'. */
@@ -217,16 +218,18 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
     /* The other tone's colour likewise where every matching sample has one: the point can be a
      * corner of a texture square (ss_cells) as they can. */
     unsigned known = 1;
-    rt_color alt[4];
     for (int i = 0; i < n; i++)
-        if (m & (1u << i)) {
+        if (m & (1u << i))
             known &= k[i]->alt_known;
-            /* a byte b as the colour b / 255, as ss_cells reads it */
-            alt[i] = v3(r_from_q16(k[i]->alt[0] * 257), r_from_q16(k[i]->alt[1] * 257),
-                        r_from_q16(k[i]->alt[2] * 257));
-            c[i] = &alt[i];
-        }
     if (known) {
+        rt_color alt[4];
+        for (int i = 0; i < n; i++)
+            if (m & (1u << i)) {
+                /* a byte b as the colour b / 255, as ss_cells reads it */
+                alt[i] = v3(r_from_q16(k[i]->alt[0] * 257), r_from_q16(k[i]->alt[1] * 257),
+                            r_from_q16(k[i]->alt[2] * 257));
+                c[i] = &alt[i];
+            }
         rt_color a = probe_interp(n, c, m, tx, ty);
         out->alt[0] = r_to_byte(a.x);
         out->alt[1] = r_to_byte(a.y);

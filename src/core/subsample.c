@@ -342,6 +342,8 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
                                                      int nx, int ny, const rt_sample *const k[4],
                                                      enum rt_split_reason why)
 {
+    if (k[0]->flags & k[1]->flags & k[2]->flags & k[3]->flags & RT_SAMPLE_OPAQUE)
+        return; /* every context opaque: no point is probed (rt_probe_point) */
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
     int xm = x0 + w / 2, ym = y0 + h / 2;
     /* the lattice at (x0, y0): a point already decided (nhits) is kept */
