@@ -306,9 +306,7 @@ typedef struct rt_stats {
     uint32_t squares[RT_GRID_LEVELS];  /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];    /* adaptive: of those, split into four */
     uint32_t split_by[RT_SPLIT_COUNT]; /* adaptive: splits by enum rt_split_reason */
-    uint32_t probes;                   /* probe mode: points probed (rt_probe_pixel) */
-    uint32_t probe_shadow;             /* probe mode: shadow rays cast by the probes */
-    uint32_t probe_secondary;          /* probe mode: reflected and refracted probe rays */
+    uint32_t probes;                   /* probe mode: points probed (rt_probe_point) */
     uint32_t texture_squares; /* adaptive: squares split only by checker cells, filled instead
                                  with the cell of each pixel (subsample.c) */
     uint32_t texture_pixels;  /* adaptive: pixels of those squares whose cell was looked up */
@@ -397,9 +395,8 @@ void rt_view_cull(rt_view *v, const rt_scene *s);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
-/* A pixel's primary ray and its nearest hit: found by the first probe of the pixel and reused
- * by the next probe or the full shade of the same pixel (probe mode), which then cast no primary
- * ray of their own. */
+/* A pixel's primary ray and its nearest hit: found by the probe of the pixel (probe mode,
+ * rt_probe_point) and reused by its full shade, which then casts no primary ray of its own. */
 typedef struct rt_primary {
     dir3 d; /* the ray's direction, rt_view_ray */
     real t; /* distance to the hit (id >= 0) */
@@ -407,24 +404,8 @@ typedef struct rt_primary {
 } rt_primary;
 #define RT_PRIMARY_UNKNOWN (-2)
 
-/* What rt_probe_pixel finds beyond the primary hit (`whole`). */
-#define RT_PROBE_WHOLE 1 /* the ray tree and the light states */
-#define RT_PROBE_TREE 2  /* the ray tree alone */
-
-/* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
- * its cost. With `whole` RT_PROBE_WHOLE: nhits, each stored node's object and level and the
- * primary hit's light states (nearest hits along the same ray tree, shadow rays at the primary
- * hit only; cell 0); RT_PROBE_TREE: the same without light states (0, no shadow ray); 0: the
- * primary object and its checker cell alone (nhits = 1, light states 0).
- * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
- * *pri: with id RT_PRIMARY_UNKNOWN the primary ray is traced and *pri gets it; otherwise *pri is
- * taken as the pixel's (a probe of the same pixel found it). Counts the rays it casts beyond the
- * primary one in *stats as rt_trace_pixel does (not rays_primary). */
-void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    int whole, rt_primary *pri, rt_stats *stats, rt_sample *out);
-
 /* rt_trace_pixel (the same record, colour and stats) for a pixel whose primary ray and hit a
- * probe may have found: *pri as rt_probe_pixel takes it (RT_PRIMARY_UNKNOWN: traced here). */
+ * probe may have found: *pri holds them, or id RT_PRIMARY_UNKNOWN (traced here, into *pri). */
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out);
 
