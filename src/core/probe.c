@@ -36,19 +36,21 @@ static int probe_agree(int n, const rt_sample *const k[], unsigned set, int thr8
     return 1;
 }
 
-/* r_lerp out of line: the colour mixing below calls it rather than repeating it (code size). */
-static __attribute__((noinline)) real probe_lerp(real a, real b, real t) { return r_lerp(a, b, t); }
+/* The colour at fraction t from *a to *b: r_lerp of each channel, in its in-range form (the
+ * same values: colours and t lie in [0, 1]). Out of line: the mixing below calls it rather than
+ * repeating it (code size). */
+static __attribute__((noinline)) rt_color probe_lerp(const rt_color *a, const rt_color *b, real t)
+{
+    return v3(r_add_in(a->x, r_mul_in(r_add_in(b->x, r_neg_in(a->x)), t)),
+              r_add_in(a->y, r_mul_in(r_add_in(b->y, r_neg_in(a->y)), t)),
+              r_add_in(a->z, r_mul_in(r_add_in(b->z, r_neg_in(a->z)), t)));
+}
 
 /* The colour at fraction t from *a to *b, from those of them in `m` alone (bit 0: a, bit 1: b;
  * the other is not read). */
-static __attribute__((noinline)) rt_color probe_mix(const rt_color *a, const rt_color *b,
-                                                    unsigned m, real t)
+static inline rt_color probe_mix(const rt_color *a, const rt_color *b, unsigned m, real t)
 {
-    if (m == 1)
-        return *a;
-    if (m == 2)
-        return *b;
-    return v3(probe_lerp(a->x, b->x, t), probe_lerp(a->y, b->y, t), probe_lerp(a->z, b->z, t));
+    return m == 1 ? *a : m == 2 ? *b : probe_lerp(a, b, t);
 }
 
 /* Do a and b have the same ray tree below the primary hit (count, objects and levels)? */

@@ -349,9 +349,9 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
     /* the lattice at (x0, y0): a point already decided (nhits) is kept */
     const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     /* rt_probe_point's first tests, on the calls they would end: an edge whose ends are both
-     * opaque or disagree on a light; a centre whose corners do not differ in their primary
-     * objects or cells (they then disagree on a light, agree on them, or have trees that differ
-     * with no corner casting no secondary ray). */
+     * opaque or disagree on a light; a centre whose corners disagree on a light or do not differ
+     * in their primary objects or cells (they then agree on them, or have trees that differ with
+     * no corner casting no secondary ray). */
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
         if (!at[j * h * c->lstride + w / 2].nhits && ss_probe_edge(k[2 * j], k[2 * j + 1]))
             ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
@@ -360,7 +360,9 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
         if (!at[h / 2 * c->lstride + i * w].nhits && ss_probe_edge(k[i], k[i + 2]))
             ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
     }
-    if (nx == 2 && ny == 2 && why == RT_SPLIT_OBJECT && !at[h / 2 * c->lstride + w / 2].nhits)
+    const unsigned l = k[0]->lights;
+    if (nx == 2 && ny == 2 && why == RT_SPLIT_OBJECT && k[1]->lights == l && k[2]->lights == l &&
+        k[3]->lights == l && !at[h / 2 * c->lstride + w / 2].nhits)
         ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
