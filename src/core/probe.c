@@ -82,19 +82,33 @@ static int probe_noise(const rt_scene *s, int id)
 /* Bits of rt_sample.lights set where a light's state is 2 (highlight). */
 #define PROBE_HIGHLIGHTS 0xAAu
 
-unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *r)
+rt_probe_masks rt_probe_masks_of(const rt_scene *s)
+{
+    rt_probe_masks mk = {0, 0};
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_texture *tx = &s->materials[s->objects[i].material].tex;
+        if (probe_noise(s, i))
+            mk.primary |= (uint32_t)1 << i;
+        if (tx->kind != RT_TEX_NONE)
+            mk.beyond |= (uint32_t)1 << i;
+    }
+    return mk;
+}
+
+/* Is object `id` (RT_NO_OBJECT: none) in the set? */
+static int probe_in(uint32_t set, unsigned id) { return id < RT_MAX_OBJECTS && (set >> id & 1); }
+
+unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *r)
 {
     /* A noise texture at the primary hit, nodes beyond those stored, a highlight (its peak
      * lies anywhere between samples), or a texture at a secondary hit (a checkerboard through
      * glass or in a mirror): the colour depends on what no record holds. */
-    if (probe_noise(s, r->hits[0].object) || r->nhits > RT_SAMPLE_MAX_HITS ||
+    if (probe_in(mk->primary, r->hits[0].object) || r->nhits > RT_SAMPLE_MAX_HITS ||
         (r->lights & PROBE_HIGHLIGHTS))
         return RT_SAMPLE_OPAQUE;
-    for (int j = 1; j < r->nhits; j++) {
-        int o = r->hits[j].object;
-        if (o != RT_NO_OBJECT && s->materials[s->objects[o].material].tex.kind != RT_TEX_NONE)
+    for (int j = 1; j < r->nhits; j++)
+        if (probe_in(mk->beyond, r->hits[j].object))
             return RT_SAMPLE_OPAQUE;
-    }
     return 0;
 }
 

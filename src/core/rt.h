@@ -514,9 +514,18 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
  * and levels of the ray tree (what rt_corners_differ compares before contributions)? */
 int rt_probe_same(const rt_sample *a, const rt_sample *b);
 
+/* Probe mode: the objects (bit i: object i) whose colour no record holds where a ray meets
+ * them: at a primary hit (`primary`: noise textures), at a secondary hit (`beyond`: any
+ * texture). Worked out once a frame (rt_probe_masks_of) for rt_probe_opaque. */
+typedef struct rt_probe_masks {
+    uint32_t primary, beyond;
+} rt_probe_masks;
+rt_probe_masks rt_probe_masks_of(const rt_scene *s);
+
 /* Probe mode: RT_SAMPLE_OPAQUE for a shaded sample whose record cannot stand for the colour of
- * a neighbour with the same record (rt_probe_point would never interpolate from it), else 0. */
-unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *sm);
+ * a neighbour with the same record (rt_probe_point would never interpolate from it), else 0;
+ * mk: rt_probe_masks_of the sample's scene. */
+unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *sm);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

@@ -272,6 +272,7 @@ typedef struct ss_ctx {
      * powers of two); else as the others (params). */
     const rt_params *quad;
     rt_params p_quad;
+    rt_probe_masks opaque;                     /* probe mode: what rt_probe_opaque tests */
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -281,11 +282,11 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
     if (RT_COMPILED_PROBE && pri) {
         rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
-        out->flags = (uint8_t)rt_probe_opaque(c->scene, out);
+        out->flags = (uint8_t)rt_probe_opaque(&c->opaque, out);
     } else {
         rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
         out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
-            ? (uint8_t)rt_probe_opaque(c->scene, out)
+            ? (uint8_t)rt_probe_opaque(&c->opaque, out)
             : 0;
     }
     /* Interpolate what is shown: colours clamped as the pixel will be. */
@@ -612,6 +613,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             c.wt[n][i] = r_from_ratio(i, n);
     if (p->mode != RT_MODE_FULL)
         c.p_quad.mode = RT_MODE_FULL;
+    if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
+        c.opaque = rt_probe_masks_of(s);
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
