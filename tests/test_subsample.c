@@ -683,8 +683,9 @@ static void test_probe_straight_edge(void **state)
     assert_true(shaded * 2 <= sa.rays_primary); /* at most half of adaptive's */
 }
 
-/* The shadow of a sphere on a matte floor: the edge followed to the pixel by probes (one
- * shadow ray each), the lit side interpolated within twice the split threshold. */
+/* The shadow of a sphere on a matte floor: the shadow's edge followed to the pixel (by full
+ * shades: a light state is not probed, that would cost as much as the shade), the sphere's
+ * outline by probes, the lit side interpolated within twice the split threshold. */
 static void test_probe_shadow_edge(void **state)
 {
     (void)state;
@@ -694,8 +695,8 @@ static void test_probe_shadow_edge(void **state)
 }
 
 /* A sphere seen only in a mirror floor: the reflected outline is followed to the pixel where
- * adaptive mode follows it (90%), probes telling the sides apart by the object their mirror ray
- * hits. */
+ * adaptive mode follows it (90%: by full shades, a ray tree is not probed); outlines seen
+ * directly are probed. */
 static void test_probe_reflected_edge(void **state)
 {
     (void)state;

@@ -121,19 +121,18 @@ static int probe_first(unsigned set)
     return i;
 }
 
-/* The colour at (tx, ty) in a context of n samples whose colours are *c[i], from those in m
- * alone (the others are not read): along x within each row of the context, then between the
- * rows (a row with one of them gives its colour). */
-static rt_color probe_interp(int n, const rt_color *const c[], unsigned m, real tx, real ty)
+/* The colour at (tx, ty) in a context of n samples k[] from those in m alone: along x within
+ * each row of the context, then between the rows (a row with one of them gives its colour). */
+static rt_color probe_interp(int n, const rt_sample *const k[], unsigned m, real tx, real ty)
 {
     unsigned top = m & 3, bot = m >> 2 & 3;
     rt_color a = v3(0, 0, 0), b = a;
     if (top)
-        a = probe_mix(c[0], c[1], top, tx);
+        a = probe_mix(&k[0]->color, &k[1]->color, top, tx);
     if (n == 2)
         return a;
     if (bot)
-        b = probe_mix(c[2], c[3], bot, tx);
+        b = probe_mix(&k[2]->color, &k[3]->color, bot, tx);
     return probe_mix(&a, &b, (top ? 1u : 0) | (bot ? 2u : 0), ty);
 }
 
@@ -224,33 +223,11 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
         (!single && !agreed && !probe_agree(n, k, m, thr8)))
         return 0;
 
-    /* The record is f's, the colour interpolated from the matching samples'. */
+    /* The record is f's, the colour interpolated from the matching samples'. f's other tone's
+     * colour of a two-tone checker (rt_sample.alt), where it has one, stands for the point's:
+     * the point can then be a corner of a texture square (ss_cells) as f can. */
     *out = *f;
-    const rt_color *c[4];
-    for (int i = 0; i < n; i++)
-        c[i] = &k[i]->color;
-    out->color = probe_interp(n, c, m, tx, ty);
+    out->color = probe_interp(n, k, m, tx, ty);
     out->flags = RT_SAMPLE_PROBED;
-    /* The other tone's colour likewise where every matching sample has one: the point can be a
-     * corner of a texture square (ss_cells) as they can. */
-    unsigned known = 1;
-    for (int i = 0; i < n; i++)
-        if (m & (1u << i))
-            known &= k[i]->alt_known;
-    if (known) {
-        rt_color alt[4];
-        for (int i = 0; i < n; i++)
-            if (m & (1u << i)) {
-                /* a byte b as the colour b / 255, as ss_cells reads it */
-                alt[i] = v3(r_from_q16(k[i]->alt[0] * 257), r_from_q16(k[i]->alt[1] * 257),
-                            r_from_q16(k[i]->alt[2] * 257));
-                c[i] = &alt[i];
-            }
-        rt_color a = probe_interp(n, c, m, tx, ty);
-        out->alt[0] = r_to_byte(a.x);
-        out->alt[1] = r_to_byte(a.y);
-        out->alt[2] = r_to_byte(a.z);
-    }
-    out->alt_known = (uint8_t)known;
     return 1;
 }
