@@ -147,9 +147,7 @@ static void app_print_stats(const cli_opts *o, const char *scene_name, const rt_
     printf("shadow_tests=%llu\n", FRAME_SUM(t, shadow_tests, 0));
     printf("noise_octaves=%llu\n", FRAME_SUM(t, noise_octaves, 0));
     if (o->k.mode == RT_MODE_PROBE)
-        printf("probes=%llu\nprobe_rays_shadow=%llu\nprobe_rays_secondary=%llu\n",
-               FRAME_SUM(t, probes, 0), FRAME_SUM(t, probe_shadow, 0),
-               FRAME_SUM(t, probe_secondary, 0));
+        printf("probes=%llu\n", FRAME_SUM(t, probes, 0));
     if (o->k.mode != RT_MODE_FULL) {
         for (int l = 0, size = o->k.grid; l < RT_GRID_LEVELS && size > 1; l++, size /= 2)
             printf("squares_%d=%llu\nsplit_%d=%llu\n", size, FRAME_SUM(t, squares, l), size,

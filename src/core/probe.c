@@ -36,17 +36,21 @@ static int probe_agree(int n, const rt_sample *const k[], unsigned set, int thr8
     return 1;
 }
 
-/* r_lerp out of line: the colour mixing below calls it rather than repeating it (code size). */
-static __attribute__((noinline)) real probe_lerp(real a, real b, real t) { return r_lerp(a, b, t); }
-
-/* The colour at fraction t from a to b, from those of them in `m` alone (bit 0: a, bit 1: b). */
-static __attribute__((noinline)) rt_color probe_mix(rt_color a, rt_color b, unsigned m, real t)
+/* The colour at fraction t from *a to *b: r_lerp of each channel, in its in-range form (the
+ * same values: colours and t lie in [0, 1]). Out of line: the mixing below calls it rather than
+ * repeating it (code size). */
+static __attribute__((noinline)) rt_color probe_lerp(const rt_color *a, const rt_color *b, real t)
 {
-    if (m == 1)
-        return a;
-    if (m == 2)
-        return b;
-    return v3(probe_lerp(a.x, b.x, t), probe_lerp(a.y, b.y, t), probe_lerp(a.z, b.z, t));
+    return v3(r_add_in(a->x, r_mul_in(r_add_in(b->x, r_neg_in(a->x)), t)),
+              r_add_in(a->y, r_mul_in(r_add_in(b->y, r_neg_in(a->y)), t)),
+              r_add_in(a->z, r_mul_in(r_add_in(b->z, r_neg_in(a->z)), t)));
+}
+
+/* The colour at fraction t from *a to *b, from those of them in `m` alone (bit 0: a, bit 1: b;
+ * the other is not read). */
+static inline rt_color probe_mix(const rt_color *a, const rt_color *b, unsigned m, real t)
+{
+    return m == 1 ? *a : m == 2 ? *b : probe_lerp(a, b, t);
 }
 
 /* Do a and b have the same ray tree below the primary hit (count, objects and levels)? */
@@ -67,10 +71,10 @@ int rt_probe_same(const rt_sample *a, const rt_sample *b)
         probe_same_tree(a, b);
 }
 
-/* Is the primary hit of r on a noise texture (which varies between any two points)? */
-static int probe_noise(const rt_scene *s, const rt_sample *r)
+/* Is a primary hit on object id (RT_NO_OBJECT: none) on a noise texture (which varies between
+ * any two points)? */
+static int probe_noise(const rt_scene *s, int id)
 {
-    int id = r->hits[0].object;
     return id != RT_NO_OBJECT && rt_scene_has(s, RT_FX_NOISE) &&
         s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
 }
@@ -78,30 +82,34 @@ static int probe_noise(const rt_scene *s, const rt_sample *r)
 /* Bits of rt_sample.lights set where a light's state is 2 (highlight). */
 #define PROBE_HIGHLIGHTS 0xAAu
 
-unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *r)
+rt_probe_masks rt_probe_masks_of(const rt_scene *s)
+{
+    rt_probe_masks mk = {0, 0};
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_texture *tx = &s->materials[s->objects[i].material].tex;
+        if (probe_noise(s, i))
+            mk.primary |= (uint32_t)1 << i;
+        if (tx->kind != RT_TEX_NONE)
+            mk.beyond |= (uint32_t)1 << i;
+    }
+    return mk;
+}
+
+/* Is object `id` (RT_NO_OBJECT: none) in the set? */
+static int probe_in(uint32_t set, unsigned id) { return id < RT_MAX_OBJECTS && (set >> id & 1); }
+
+unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *r)
 {
     /* A noise texture at the primary hit, nodes beyond those stored, a highlight (its peak
      * lies anywhere between samples), or a texture at a secondary hit (a checkerboard through
      * glass or in a mirror): the colour depends on what no record holds. */
-    if (probe_noise(s, r) || r->nhits > RT_SAMPLE_MAX_HITS || (r->lights & PROBE_HIGHLIGHTS))
+    if (probe_in(mk->primary, r->hits[0].object) || r->nhits > RT_SAMPLE_MAX_HITS ||
+        (r->lights & PROBE_HIGHLIGHTS))
         return RT_SAMPLE_OPAQUE;
-    for (int j = 1; j < r->nhits; j++) {
-        int o = r->hits[j].object;
-        if (o != RT_NO_OBJECT && s->materials[s->objects[o].material].tex.kind != RT_TEX_NONE)
+    for (int j = 1; j < r->nhits; j++)
+        if (probe_in(mk->beyond, r->hits[j].object))
             return RT_SAMPLE_OPAQUE;
-    }
     return 0;
-}
-
-/* Bit i set for each context sample k[i] of the set `in` whose record is r's (their primary
- * object and cell are r's already). */
-static unsigned probe_matches(int n, const rt_sample *const k[], unsigned in, const rt_sample *r)
-{
-    unsigned m = 0;
-    for (int i = 0; i < n; i++)
-        if ((in & (1u << i)) && k[i]->lights == r->lights && probe_same_tree(r, k[i]))
-            m |= 1u << i;
-    return m;
 }
 
 /* The lowest bit set in a non-empty set. */
@@ -113,73 +121,97 @@ static int probe_first(unsigned set)
     return i;
 }
 
-int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
-                   int x, int y, int n, const rt_sample *const k[], enum rt_split_reason why,
-                   real tx, real ty, int span, rt_primary *pri, rt_sample *out)
+/* The colour at (tx, ty) in a context of n samples k[] from those in m alone: along x within
+ * each row of the context, then between the rows (a row with one of them gives its colour). */
+static rt_color probe_interp(int n, const rt_sample *const k[], unsigned m, real tx, real ty)
+{
+    unsigned top = m & 3, bot = m >> 2 & 3;
+    rt_color a = v3(0, 0, 0), b = a;
+    if (top)
+        a = probe_mix(&k[0]->color, &k[1]->color, top, tx);
+    if (n == 2)
+        return a;
+    if (bot)
+        b = probe_mix(&k[2]->color, &k[3]->color, bot, tx);
+    return probe_mix(&a, &b, (top ? 1u : 0) | (bot ? 2u : 0), ty);
+}
+
+/* The primary hit of pixel (x, y) as its full shade finds it (the same ray and nearest-hit test
+ * as trace_first) into *pri, and the checker cell there into *cell (0: none). Returns the object
+ * as a record holds it (RT_NO_OBJECT: none). */
+static int probe_primary(const rt_scene *s, const rt_view *v, int x, int y, rt_stats *st,
+                         rt_primary *pri, uint8_t *cell)
+{
+    const dir3 d = pri->d = rt_view_ray(v, x, y);
+    const vec3 eye = v->eye;
+    pri->t = 0;
+    int id = eye.x == s->eye_at.x && eye.y == s->eye_at.y && eye.z == s->eye_at.z
+        ? rt_nearest_primary(s, d, rt_view_candidates(v, x, y), &pri->t)
+        : rt_nearest_but(s, eye, d, R_T_MAX, -1, &pri->t);
+    pri->id = id;
+    *cell = 0;
+    if (id < 0)
+        return RT_NO_OBJECT;
+    const rt_material *m = &s->materials[s->objects[id].material];
+    if (rt_scene_has(s, RT_FX_TEXTURE) && m->tex.active && m->tex.kind == RT_TEX_CHECKER)
+        rt_texture_color(m, v3_along_in(eye, d, pri->t), 0, 0, st, cell);
+    return id;
+}
+
+int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y, int n,
+                   const rt_sample *const k[], enum rt_split_reason why, real tx, real ty, int span,
+                   rt_primary *pri, rt_sample *out)
 {
     pri->id = RT_PRIMARY_UNKNOWN;
-    /* 0. No probe where its answer cannot matter: a point whose record is a context sample's
-     * gets that sample's verdict, one with a new record is shaded. So when every context sample
-     * is opaque (rt_probe_opaque), or all have one record whose contributions disagree, shade.
-     * The four corners of a square have that when it was split for its contributions alone. */
-    unsigned opaque = k[0]->flags & k[1]->flags;
-    if (n == 4)
-        opaque &= k[2]->flags & k[3]->flags;
-    if ((opaque & RT_SAMPLE_OPAQUE) ||
-        (n == 4 ? why == RT_SPLIT_CONTRIB
-                : rt_probe_same(k[0], k[1]) && !probe_agree(2, k, 3u, thr8)))
-        return 0;
-    /* Nor on an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object, cell or
-     * light states: the point's record could then be one end's at most, and one is not enough
-     * there. */
-    if (n == 2 && span > RT_PROBE_ONE_SPAN &&
-        (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell ||
-         k[0]->lights != k[1]->lights))
-        return 0;
+    /* 0. No probe where it cannot pay: where every context sample is opaque (rt_probe_opaque),
+     * or all have one record whose contributions disagree (the four corners of a square split
+     * for its contributions alone), a point with a context sample's record gets its verdict and
+     * one with a new record is shaded. Where the context disagrees on a light, the point's light
+     * states would take a shadow ray per light, and where every context sample casts secondary
+     * rays (and an edge's two ends differ in them), its ray tree would take those rays again:
+     * its full shade but for the colour, so the probe would cost more than it saves. */
+    unsigned opaque = k[0]->flags & k[1]->flags, lights = 0, flat = 0, agreed = 0;
+    for (int i = 0; i < n; i++) {
+        opaque &= k[i]->flags;
+        lights |= k[i]->lights ^ k[0]->lights;
+        flat |= k[i]->nhits == 1;
+    }
+    if ((opaque & RT_SAMPLE_OPAQUE) || lights)
+        return -1;
+    if (n == 4) {
+        if (why == RT_SPLIT_CONTRIB || !flat)
+            return -1;
+    } else if (rt_probe_same(k[0], k[1])) {
+        if (!probe_agree(2, k, 3u, thr8))
+            return -1;
+        agreed = 1; /* the edge's ends agree: a point matching both needs no more test */
+    } else if (!flat ||
+               (span > RT_PROBE_ONE_SPAN &&
+                (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell))) {
+        /* Nor on an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object or
+         * cell: the point's record could then be one end's at most, not enough there. */
+        return -1;
+    }
 
-    /* 1. The primary hit and its checker cell (into out, scratch until the end); a noise
-     * texture there ends the probe. Its primary ray is kept in *pri for what follows. */
+    /* 1. The primary hit and its checker cell; a noise texture there ends the probe. The
+     * primary ray and hit stay in *pri for the full shade. */
     st->probes++;
-    rt_probe_pixel(s, v, p, x, y, 0, pri, st, out);
-    if (probe_noise(s, out))
+    uint8_t cell;
+    int id = probe_primary(s, v, x, y, st, pri, &cell);
+    if (probe_noise(s, id))
         return 0;
-    int id = out->hits[0].object;
-    uint8_t cell = out->cell;
     unsigned m = 0;
     for (int i = n - 1; i >= 0; i--)
         m = m << 1 | (k[i]->hits[0].object == id && k[i]->cell == cell ? 1u : 0);
     if (!m)
         return 0; /* something new */
 
-    /* 2. The light states where the context disagrees on a light (a shadow or highlight edge
-     * crosses it), the ray tree where the surface casts secondary rays (what they meet can
-     * change anywhere) unless the context is an edge whose ends have one record; elsewhere the
-     * matching sample's record is the point's. */
+    /* 2. The context agrees on every light: the matching sample's light states are the point's.
+     * Its ray tree is the matching sample's where that casts no secondary ray, or on an edge
+     * whose ends have one record; elsewhere it would take a probe of its own: shaded. */
     const rt_sample *f = k[probe_first(m)];
-    int lights = 0;
-    for (int i = 0; i < n; i++)
-        lights |= k[i]->lights != f->lights;
-    int deep = lights || (f->nhits > 1 && !(n == 2 && m == 3u && probe_same_tree(k[0], k[1])));
-    if (deep) {
-        /* Its rays beyond the primary one are the probe's: moved to probe_shadow and
-         * probe_secondary (their object tests stay in shadow_tests). */
-        uint32_t sh = st->rays_shadow, rl = st->rays_reflect, rr = st->rays_refract;
-        rt_probe_pixel(s, v, p, x, y, lights ? RT_PROBE_WHOLE : RT_PROBE_TREE, pri, st, out);
-        if (!lights)
-            out->lights = f->lights;
-        st->probe_shadow += st->rays_shadow - sh;
-        st->probe_secondary += (st->rays_reflect - rl) + (st->rays_refract - rr);
-        st->rays_shadow = sh;
-        st->rays_reflect = rl;
-        st->rays_refract = rr;
-        out->cell = cell;
-        m = probe_matches(n, k, m, out);
-        if (!m)
-            return 0;
-        f = k[probe_first(m)];
-    } else {
-        *out = *f;
-    }
+    if (f->nhits > 1 && !(n == 2 && m == 3u && probe_same_tree(k[0], k[1])))
+        return 0;
 
     /* 3. Interpolation stands in where two samples or more have the point's record, or one
      * next to it (at most RT_PROBE_ONE_SPAN pixels across the context); where the colour
@@ -188,22 +220,14 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_s
      * contributions agree. */
     int single = !(m & (m - 1));
     if ((single && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
-        (!single && !probe_agree(n, k, m, thr8)))
+        (!single && !agreed && !probe_agree(n, k, m, thr8)))
         return 0;
 
-    /* The colour: along x within each row of the context, then between the rows. */
-    unsigned top = m & 3, bot = m >> 2 & 3;
-    rt_color col = probe_mix(k[0]->color, k[1]->color, top, tx);
-    if (n == 4)
-        col = probe_mix(col, probe_mix(k[2]->color, k[3]->color, bot, tx),
-                        (top ? 1u : 0) | (bot ? 2u : 0), ty);
-    if (deep) {
-        int nodes = out->nhits < RT_SAMPLE_MAX_HITS ? out->nhits : RT_SAMPLE_MAX_HITS;
-        for (int j = 0; j < nodes; j++)
-            for (int ch = 0; ch < 3; ch++)
-                out->hits[j].contrib[ch] = f->hits[j].contrib[ch];
-    }
-    out->color = col;
+    /* The record is f's, the colour interpolated from the matching samples'. f's other tone's
+     * colour of a two-tone checker (rt_sample.alt), where it has one, stands for the point's:
+     * the point can then be a corner of a texture square (ss_cells) as f can. */
+    *out = *f;
+    out->color = probe_interp(n, k, m, tx, ty);
     out->flags = RT_SAMPLE_PROBED;
     return 1;
 }

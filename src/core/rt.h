@@ -311,9 +311,7 @@ typedef struct rt_stats {
     uint32_t squares[RT_GRID_LEVELS];  /* adaptive: squares examined at each level */
     uint32_t split[RT_GRID_LEVELS];    /* adaptive: of those, split into four */
     uint32_t split_by[RT_SPLIT_COUNT]; /* adaptive: splits by enum rt_split_reason */
-    uint32_t probes;                   /* probe mode: points probed (rt_probe_pixel) */
-    uint32_t probe_shadow;             /* probe mode: shadow rays cast by the probes */
-    uint32_t probe_secondary;          /* probe mode: reflected and refracted probe rays */
+    uint32_t probes;                   /* probe mode: points probed (rt_probe_point) */
     uint32_t texture_squares; /* adaptive: squares split only by checker cells, filled instead
                                  with the cell of each pixel (subsample.c) */
     uint32_t texture_pixels;  /* adaptive: pixels of those squares whose cell was looked up */
@@ -402,9 +400,8 @@ void rt_view_cull(rt_view *v, const rt_scene *s);
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out);
 
-/* A pixel's primary ray and its nearest hit: found by the first probe of the pixel and reused
- * by the next probe or the full shade of the same pixel (probe mode), which then cast no primary
- * ray of their own. */
+/* A pixel's primary ray and its nearest hit: found by the probe of the pixel (probe mode,
+ * rt_probe_point) and reused by its full shade, which then casts no primary ray of its own. */
 typedef struct rt_primary {
     dir3 d; /* the ray's direction, rt_view_ray */
     real t; /* distance to the hit (id >= 0) */
@@ -412,24 +409,8 @@ typedef struct rt_primary {
 } rt_primary;
 #define RT_PRIMARY_UNKNOWN (-2)
 
-/* What rt_probe_pixel finds beyond the primary hit (`whole`). */
-#define RT_PROBE_WHOLE 1 /* the ray tree and the light states */
-#define RT_PROBE_TREE 2  /* the ray tree alone */
-
-/* A visibility probe of pixel (x, y): fills the record rt_trace_pixel would, at a fraction of
- * its cost. With `whole` RT_PROBE_WHOLE: nhits, each stored node's object and level and the
- * primary hit's light states (nearest hits along the same ray tree, shadow rays at the primary
- * hit only; cell 0); RT_PROBE_TREE: the same without light states (0, no shadow ray); 0: the
- * primary object and its checker cell alone (nhits = 1, light states 0).
- * No texture colour, noise or shading: out->color and the nodes' contrib are left meaningless.
- * *pri: with id RT_PRIMARY_UNKNOWN the primary ray is traced and *pri gets it; otherwise *pri is
- * taken as the pixel's (a probe of the same pixel found it). Counts the rays it casts beyond the
- * primary one in *stats as rt_trace_pixel does (not rays_primary). */
-void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    int whole, rt_primary *pri, rt_stats *stats, rt_sample *out);
-
 /* rt_trace_pixel (the same record, colour and stats) for a pixel whose primary ray and hit a
- * probe may have found: *pri as rt_probe_pixel takes it (RT_PRIMARY_UNKNOWN: traced here). */
+ * probe may have found: *pri holds them, or id RT_PRIMARY_UNKNOWN (traced here, into *pri). */
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out);
 
@@ -506,34 +487,50 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
                         int nbands, enum rt_band_memory mem);
 
-/* Probe mode (probe.c), for a point (x, y) that splitting a square adds: probes it
- * (rt_probe_pixel) and compares its record with its n context samples k[]: the ends of the
- * edge it lies on (n = 2, the point at fraction tx from k[0] to k[1]) or the corners of the
- * square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1), (1, 1), the point at (tx, ty);
- * `why` is rt_corners_differ's verdict on them); `span` is the context's size in pixels (the
- * edge's length, the square's larger side).
- * Returns 1 when the point's colour can be reconstructed: two or more context samples have
- * its record (rt_probe_same), or one and span <= RT_PROBE_ONE_SPAN; the record is on no noise
- * texture, meets no texture beyond the primary hit, has no highlight; and those samples'
- * contributions agree within thr8 (1/255 steps). *out then gets the probe's record, the colour
- * interpolated from those samples alone (along x within each row of the context, then between
- * the rows; a row with one matching sample gives its colour), the contributions of the first
- * of them and flags RT_SAMPLE_PROBED. Returns 0 when the point must be shaded in full (*out is
- * then scratch): *pri then holds the primary ray and hit if a probe found them
- * (rt_trace_pixel_from), else id RT_PRIMARY_UNKNOWN. Counts probes and their rays in
- * st->probes, probe_shadow and probe_secondary. */
+/* Probe mode (probe.c), for a point (x, y) that splitting a square adds, with its n context
+ * samples k[]: the ends of the edge it lies on (n = 2, the point at fraction tx from k[0] to
+ * k[1]) or the corners of the square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1),
+ * (1, 1), the point at (tx, ty); `why` is rt_corners_differ's verdict on them); `span` is the
+ * context's size in pixels (the edge's length, the square's larger side).
+ * Returns -1 without a probe where one cannot pay (every context sample opaque, the context
+ * disagreeing on a light, ray trees a probe would have to trace, or, for a centre, a square
+ * split for its contributions alone; an edge longer than RT_PROBE_ONE_SPAN whose ends differ
+ * in primary object or cell; an edge whose ends have one record but contributions that
+ * disagree): the point is to be shaded in full. Else probes the point's primary hit and
+ * checker cell (as its full shade finds them) and returns 1 when its colour can be
+ * reconstructed: the context samples with its primary object and cell (the matching ones)
+ * give its record (the context agrees on every light; the first of them casts no secondary
+ * ray, or the context is an edge whose ends have one record), two or more of them match, or
+ * one and span <= RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise
+ * texture, no texture beyond the primary hit, no highlight); and the matching samples'
+ * contributions agree within thr8 (1/255 steps). *out then gets the first matching sample's
+ * record, the colour interpolated from the matching samples alone (along x within each row of
+ * the context, then between the rows; a row with one matching sample gives its colour), their
+ * other tone's colour likewise where all of them have one (rt_sample.alt), and flags
+ * RT_SAMPLE_PROBED. Returns 0 when the probed point must be shaded in full (*out untouched):
+ * *pri then holds its primary ray and hit (rt_trace_pixel_from). Counts probes in
+ * st->probes. */
 #define RT_PROBE_ONE_SPAN 4
-int rt_probe_point(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *st, int thr8,
-                   int x, int y, int n, const rt_sample *const k[], enum rt_split_reason why,
-                   real tx, real ty, int span, rt_primary *pri, rt_sample *out);
+int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y, int n,
+                   const rt_sample *const k[], enum rt_split_reason why, real tx, real ty, int span,
+                   rt_primary *pri, rt_sample *out);
 
 /* Do two records have the same shape: primary object and cell, light states, and the objects
  * and levels of the ray tree (what rt_corners_differ compares before contributions)? */
 int rt_probe_same(const rt_sample *a, const rt_sample *b);
 
+/* Probe mode: the objects (bit i: object i) whose colour no record holds where a ray meets
+ * them: at a primary hit (`primary`: noise textures), at a secondary hit (`beyond`: any
+ * texture). Worked out once a frame (rt_probe_masks_of) for rt_probe_opaque. */
+typedef struct rt_probe_masks {
+    uint32_t primary, beyond;
+} rt_probe_masks;
+rt_probe_masks rt_probe_masks_of(const rt_scene *s);
+
 /* Probe mode: RT_SAMPLE_OPAQUE for a shaded sample whose record cannot stand for the colour of
- * a neighbour with the same record (rt_probe_point would never interpolate from it), else 0. */
-unsigned rt_probe_opaque(const rt_scene *s, const rt_sample *sm);
+ * a neighbour with the same record (rt_probe_point would never interpolate from it), else 0;
+ * mk: rt_probe_masks_of the sample's scene. */
+unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *sm);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
  * two rows of square corners and the samples of one square; 0 in full mode. */

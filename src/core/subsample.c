@@ -309,13 +309,14 @@ typedef struct ss_ctx {
     int lstride;    /* grid + 1 */
     int sx, sy;     /* pixel of the lattice's (0, 0) */
     int split;      /* set when a square of the lattice is split (its points traced) */
-    /* How ss_quad's points are traced: in adaptive mode, within a top-level square of the
+    /* How ss_quad's points are traced: in adaptive and probe mode, within a top-level square of the
      * full grid, as full mode traces them (p_quad, without the other tone of a checker,
      * rt_sample.alt), since no square ever has one of them as a corner: they lie at odd
      * offsets, where every square split further has its corners at even ones (sizes are
      * powers of two); else as the others (params). */
     const rt_params *quad;
     rt_params p_quad;
+    rt_probe_masks opaque;                     /* probe mode: what rt_probe_opaque tests */
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -325,11 +326,11 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
     if (RT_COMPILED_PROBE && pri) {
         rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
-        out->flags = (uint8_t)rt_probe_opaque(c->scene, out);
+        out->flags = (uint8_t)rt_probe_opaque(&c->opaque, out);
     } else {
         rt_trace_pixel(c->scene, c->view, c->params, x, y, c->stats, out);
         out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
-            ? (uint8_t)rt_probe_opaque(c->scene, out)
+            ? (uint8_t)rt_probe_opaque(&c->opaque, out)
             : 0;
     }
     /* Interpolate what is shown: colours clamped as the pixel will be. */
@@ -360,13 +361,21 @@ static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int 
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
     rt_primary pri;
-    if (rt_probe_point(c->scene, c->view, c->params, c->stats, c->thr8, x, y, n, k, why, tx, ty,
-                       span, &pri, sm)) {
+    int r = rt_probe_point(c->scene, c->view, c->stats, c->thr8, x, y, n, k, why, tx, ty, span,
+                           &pri, sm);
+    if (r > 0) {
         if (c->traced)
             __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
-        return;
-    }
-    ss_shade(c, x, y, sm, &pri); /* in full, from the primary hit if the probe found it */
+    } else if (r == 0) {
+        ss_shade(c, x, y, sm, &pri); /* in full, from the primary hit the probe found */
+    } /* else not probed: shaded where the squares below need it (ss_need), as adaptive mode does */
+}
+
+/* Can an edge from a to b have a point worth probing (rt_probe_point)? Not when both ends are
+ * opaque or they disagree on a light. */
+static inline int ss_probe_edge(const rt_sample *a, const rt_sample *b)
+{
+    return !(a->flags & b->flags & RT_SAMPLE_OPAQUE) && a->lights == b->lights;
 }
 
 /* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
@@ -378,19 +387,27 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
                                                      int nx, int ny, const rt_sample *const k[4],
                                                      enum rt_split_reason why)
 {
+    if (k[0]->flags & k[1]->flags & k[2]->flags & k[3]->flags & RT_SAMPLE_OPAQUE)
+        return; /* every context opaque: no point is probed (rt_probe_point) */
     real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
     int xm = x0 + w / 2, ym = y0 + h / 2;
     /* the lattice at (x0, y0): a point already decided (nhits) is kept */
     const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
+    /* rt_probe_point's first tests, on the calls they would end: an edge whose ends are both
+     * opaque or disagree on a light; a centre whose corners disagree on a light or do not differ
+     * in their primary objects or cells (they then agree on them, or have trees that differ with
+     * no corner casting no secondary ray). */
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
-        if (!at[j * h * c->lstride + w / 2].nhits)
+        if (!at[j * h * c->lstride + w / 2].nhits && ss_probe_edge(k[2 * j], k[2 * j + 1]))
             ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
     for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
         const rt_sample *kk[2] = {k[i], k[i + 2]};
-        if (!at[h / 2 * c->lstride + i * w].nhits)
+        if (!at[h / 2 * c->lstride + i * w].nhits && ss_probe_edge(k[i], k[i + 2]))
             ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
     }
-    if (nx == 2 && ny == 2 && !at[h / 2 * c->lstride + w / 2].nhits)
+    const unsigned l = k[0]->lights;
+    if (nx == 2 && ny == 2 && why == RT_SPLIT_OBJECT && k[1]->lights == l && k[2]->lights == l &&
+        k[3]->lights == l && !at[h / 2 * c->lstride + w / 2].nhits)
         ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
 }
 
@@ -638,8 +655,10 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     for (int n = 1; n <= g; n++)
         for (int i = 0; i <= n; i++)
             c.wt[n][i] = r_from_ratio(i, n);
-    if (p->mode == RT_MODE_ADAPTIVE)
+    if (p->mode != RT_MODE_FULL)
         c.p_quad.mode = RT_MODE_FULL;
+    if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
+        c.opaque = rt_probe_masks_of(s);
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */

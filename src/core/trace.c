@@ -14,9 +14,6 @@ typedef struct trace_ctx {
     /* How the primary ray finds its hit: 0 rt_nearest_but, 1 rt_nearest_primary (the view's eye
      * is the prepared one, eye_at), 2 through `pri` (trace_first) */
     int eye_prepared;
-    /* a visibility probe (rt_probe_pixel): 1 the primary hit only, 2 the record, 3 the record
-     * without light states */
-    int probe;
     rt_primary *pri; /* probe mode: the primary hit, found here or given (rt_primary); or NULL */
     uint32_t primary_cand; /* the objects the primary ray's rt_nearest_primary tests */
     /* The view's mirror plane when its candidates serve this pixel (the view's eye is the
@@ -28,9 +25,6 @@ typedef struct trace_ctx {
      * colour (rt_sample.alt, trace_alt_mid) */
     int alt;
 } trace_ctx;
-
-/* Is this a probe? Never in a build without probe mode (RT_COMPILED_PROBE). */
-#define TRACE_PROBE(c) (RT_COMPILED_PROBE && (c)->probe)
 
 /* Inlined into its three callers: the colour stays in registers (no copy through the stack)
  * and the count is read once. */
@@ -49,23 +43,6 @@ static inline __attribute__((always_inline)) void trace_record(trace_ctx *c, int
     }
     sm->nhits = (uint8_t)(n + (n < 255));
 }
-
-#if RT_COMPILED_PROBE
-/* A probe of the primary hit alone (rt_probe_pixel without `whole`): p on object id of
- * material m; records the object and its checker cell. Out of line, off the shading path. */
-static __attribute__((noinline)) rt_color trace_probe_hit(trace_ctx *c, const rt_material *m,
-                                                          vec3 p, int id)
-{
-    uint8_t cell = 0;
-    if (rt_scene_has(c->scene, RT_FX_TEXTURE) && m->tex.kind == RT_TEX_CHECKER)
-        rt_texture_color(m, p, 0, 0, c->stats, &cell);
-    c->sample->cell = cell;
-    trace_record(c, id, 0, c->scene->background);
-    return c->scene->background;
-}
-#else
-#define trace_probe_hit(c, m, p, id) ((c)->scene->background)
-#endif
 
 #if RT_COMPILED_PROBE
 /* Probe mode's primary hit (eye_prepared 2): the one a probe of this pixel found (c->pri), or
@@ -279,8 +256,6 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* The hit as trace_light sees it, formed in place. */
     trace_hit h;
     const vec3 p = h.p = v3_along_in(org, d, t);
-    if (TRACE_PROBE(c) && c->probe == 1)
-        return trace_probe_hit(c, m, p, id);
     dir3 n = rt_shapes[o->kind].normal(o, p);
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -298,8 +273,6 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
     h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
-    /* A probe takes no texture (trace_probe_hit has the cell), and light states only at the
-     * primary hit. */
     uint8_t cell = 0;
     /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
      * than any noise octave) so that it cannot saturate however deep the recursion */
@@ -309,7 +282,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     travelled = t < r_add_in(travel_max, r_neg_in(travelled)) ? r_add_in(travelled, t) : travel_max;
     /* a material whose texture is not active (none, or a checker of one colour) is its diffuse
      * colour with no cell, as rt_texture_color would return: tested here, without the call */
-    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && !TRACE_PROBE(c) && m->tex.active
+    rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && m->tex.active
         ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
@@ -320,9 +293,8 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         ? m->ambient_term
         : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
     h.base = base;
-    int nlights = TRACE_PROBE(c) && (level > 0 || c->probe == 3) ? 0 : s->nlights;
     unsigned lights = 0;
-    for (int i = 0; i < nlights; i++)
+    for (int i = 0; i < s->nlights; i++)
         lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
     if (level == 0) {
         c->sample->lights = (uint8_t)lights;
@@ -345,19 +317,18 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     return col;
 }
 
-/* Shared by rt_trace_pixel, rt_trace_pixel_from and rt_probe_pixel: inlined into rt_trace_pixel
- * (`probe` 0, `pri` NULL there) and into trace_point_pri, probe mode's one copy. */
+/* Shared by rt_trace_pixel and rt_trace_pixel_from: inlined into each (`pri` NULL in the
+ * first). */
 static inline __attribute__((always_inline)) void trace_point(const rt_scene *s, const rt_view *v,
                                                               const rt_params *p, int x, int y,
                                                               rt_stats *stats, rt_sample *out,
-                                                              int probe, rt_primary *pri)
+                                                              rt_primary *pri)
 {
     int at_eye = v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
     int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
-    /* adaptive mode (probe mode is adaptive where it is not compiled in), from the prepared eye
-     * (the primary hit as ss_cells finds it again, with rt_nearest_primary) */
-    const int alt = eye_prepared == 1 && p->mode != RT_MODE_FULL &&
-        !(RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE);
+    /* adaptive and probe mode, from the prepared eye (the primary hit as ss_cells finds it
+     * again, with rt_nearest_primary; trace_first finds it so too) */
+    const int alt = at_eye && p->mode != RT_MODE_FULL;
     trace_ctx c = {.scene = s,
                    .stats = stats,
                    .sample = out,
@@ -365,7 +336,6 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .octaves = p->octaves,
                    .pixel = p->footprint ? v->pixel : 0,
                    .eye_prepared = eye_prepared,
-                   .probe = probe,
                    .pri = pri,
                    .primary_cand = rt_view_candidates(v, x, y),
                    .mirror = at_eye ? v->mirror_plane : -1,
@@ -381,8 +351,7 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     } else {
         d = rt_view_ray(v, x, y);
     }
-    if (!probe)
-        stats->rays_primary++;
+    stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     rt_color col = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
     if (out->alt_known) /* the primary hit: a plane with a two-tone checker */
@@ -393,28 +362,13 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
 void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                     rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, 0, NULL);
+    trace_point(s, v, p, x, y, stats, out, NULL);
 }
 
 #if RT_COMPILED_PROBE
-/* The one copy of trace_point for probe mode's calls (code size). */
-static __attribute__((noinline)) void trace_point_pri(const rt_scene *s, const rt_view *v,
-                                                      const rt_params *p, int x, int y,
-                                                      rt_stats *stats, rt_sample *out, int probe,
-                                                      rt_primary *pri)
-{
-    trace_point(s, v, p, x, y, stats, out, probe, pri);
-}
-
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out)
 {
-    trace_point_pri(s, v, p, x, y, stats, out, 0, pri);
-}
-
-void rt_probe_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    int whole, rt_primary *pri, rt_stats *stats, rt_sample *out)
-{
-    trace_point_pri(s, v, p, x, y, stats, out, whole == RT_PROBE_TREE ? 3 : whole ? 2 : 1, pri);
+    trace_point(s, v, p, x, y, stats, out, pri);
 }
 #endif
