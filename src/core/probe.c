@@ -79,9 +79,6 @@ static int probe_noise(const rt_scene *s, int id)
         s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
 }
 
-/* Bits of rt_sample.lights set where a light's state is 2 (highlight). */
-#define PROBE_HIGHLIGHTS 0xAAu
-
 rt_probe_masks rt_probe_masks_of(const rt_scene *s)
 {
     rt_probe_masks mk = {0, 0};
@@ -104,7 +101,7 @@ unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *r)
      * lies anywhere between samples), or a texture at a secondary hit (a checkerboard through
      * glass or in a mirror): the colour depends on what no record holds. */
     if (probe_in(mk->primary, r->hits[0].object) || r->nhits > RT_SAMPLE_MAX_HITS ||
-        (r->lights & PROBE_HIGHLIGHTS))
+        (r->lights & RT_LIGHTS_HIGHLIGHT))
         return RT_SAMPLE_OPAQUE;
     for (int j = 1; j < r->nhits; j++)
         if (probe_in(mk->beyond, r->hits[j].object))
