@@ -229,11 +229,11 @@ typedef struct rt_sample {
      * eye): alt is the colour the point would have in a cell of the other colour (the same
      * lights, highlights and secondary rays, the other diffuse colour) as the bytes of a pixel
      * (r_to_byte of each channel: red, green, blue). alt_known 2 (adaptive mode, a primary hit
-     * on a noise texture seen from the prepared eye, nhits < RT_SAMPLE_MAX_HITS): the colour is
+     * on a noise texture seen from the prepared eye, no secondary ray: nhits 1): the colour is
      * b x A + B, b the texture's colour at the hit, A the lighting that multiplies it (ambient
-     * and Lambert terms) and B the rest (highlights, secondary rays); alt holds A / 2 as bytes
-     * (r_to_byte, A <= 2) and hits[nhits].contrib, a node past the tree, B (clamped to [0, 1],
-     * with A as those bytes give it back: 2 alt / 255). Else 0. */
+     * and Lambert terms) and B the rest (highlights); alt holds A / 2 as bytes (r_to_byte,
+     * A <= 2) and hits[1].contrib, the node past the tree, B as bytes (clamped to [0, 1]: a B
+     * of 1 or more gives a pixel of 1 whatever b x A adds). Else 0. */
     uint8_t alt[3];
     uint8_t alt_known;
 } rt_sample;

@@ -513,12 +513,11 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
  * tracer's octave rule). Returns 1 when it filled the pixels the square owns (as ss_fill:
  * `cols` x `rows`; points traced before keep their colour), 0 to split (also when a pixel's ray
  * misses the object: the split writes every pixel again). In integers: A in Q15 (byte x 257,
- * below 2), b and B in Q16.16, b x A below 2^32; the criterion's terms below 2^20. Compiled for
- * size (cold): the texture's noise is most of a pixel's cost. 1.2 kB of stack, less than the
- * nested shading it replaces. */
-static __attribute__((cold, noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm,
-                                                    const rt_sample *const k[4], int x0, int y0,
-                                                    int w, int h, int own)
+ * below 2), b and B in Q16.16, b x A below 2^32; the criterion's terms below 2^20. 1.2 kB of
+ * stack, less than the nested shading it replaces. */
+static __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm,
+                                              const rt_sample *const k[4], int x0, int y0, int w,
+                                              int h, int own)
 {
     /* ab[corner]: A / 2 and B as colours (a byte b as b 257 / 2^16, within 2^-16 of b / 255) */
     rt_color ab[2][4];

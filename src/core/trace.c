@@ -121,8 +121,8 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
     for (int l = 0; lights; l++, lights >>= 2)
         if (lights & 3)
             e = c3_madd_p(e, s->lights[l].color, h->ndl[l]);
-    rt_color b2 = rt_cell_tone(c->sample->cell) ? m->diffuse : m->tex.color2;
     rt_sample *sm = c->sample;
+    rt_color b2 = rt_cell_tone(sm->cell) ? m->diffuse : m->tex.color2;
     if (noise) {
         if (e.x > R(2.0) || e.y > R(2.0) || e.z > R(2.0))
             return;
@@ -137,8 +137,8 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
     sm->alt_known = (uint8_t)(1 + noise);
 }
 
-/* The sample's other tone (rt_sample.alt; a noise texture: its B, into `to`) from its colour col
- * and what trace_alt_mid left in its colour (within [-65, 65]: the sum is in
+/* The sample's other tone (rt_sample.alt; on a noise texture its B, rt_sample.hits[1]) into `to`
+ * from its colour col and what trace_alt_mid left in its colour (within [-65, 65]: the sum is in
  * range), as the bytes of a pixel. */
 static __attribute__((cold, noinline)) void trace_alt_end(uint8_t *to, const rt_sample *sm,
                                                           rt_color col)
