@@ -103,7 +103,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
+        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -218,13 +218,18 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # functions dropped, no unwind tables, the hot tracer (shading, shapes) at -O2 and the rest at -Os
 # (subsampling, textures and noise too: the player needs the room; a desktop has speed to spare).
 # The stripped file grows a page (4 KiB) at once when the code reaches the page its data starts
-# on: readelf -lW build/intro-fixed shows how much room is left (code end against RW start).
+# on: the build prints how much room is left (readelf -lW build/intro-fixed: code end against RW
+# start).
+# Compiled -fno-pie, as they are linked (-no-pie): absolute addresses in the code (a 5-byte mov
+# where position-independent code takes a 7-byte lea), constant tables of pointers read-only
+# data instead of relocated data; -fno-plt: calls into SDL2, libpng and libc go through the GOT
+# (bound at start-up), with no PLT stubs.
 PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/probe.c
 PLAYER_COLD := src/core/subsample.c src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
-                 -fno-unwind-tables -fno-stack-protector -DRT_COMPILED_PROBE=0
+                 -fno-unwind-tables -fno-stack-protector -fno-pie -fno-plt -DRT_COMPILED_PROBE=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
@@ -232,19 +237,22 @@ PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
 # $(1) real, $(2) REAL_FIXED, $(3) libfixmath archive or empty
 define player
 PLAYER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT) $(PLAYER_COLD))
-$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_HOT)): $(BUILD)/obj/player-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $(PLAYER_CFLAGS) -O2 $(if $(filter 1,$(2)),$(FIXED_CORE_GUARD)) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
-$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$$(patsubst %.c,$(BUILD)/obj/player-$(1)/%.o,$(PLAYER_COLD)): $(BUILD)/obj/player-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $(PLAYER_CFLAGS) -Os $(CPPFLAGS) $$(SDL_CFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 $(BUILD)/intro-$(1): $$(PLAYER_OBJS_$(1)) $$(if $(3),$(BUILD)/obj/player-$(1)/libfixmath.a)
 	$$(CC) $(PLAYER_LDFLAGS) -o $$@ $$^ $$(LIBS)
-	@strip -o $$@.stripped $$@ && printf 'player %s: %d bytes stripped (limit %d)\n' $$@ $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) && rm -f $$@.stripped
-# libfixmath as rt-fixed has it (-O2), one section per function: the unused ones are dropped.
-$(BUILD)/obj/player-$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@strip -o $$@.stripped $$@ && set -- $$$$(readelf -lW $$@ | awk '$$$$1 == "LOAD" { print $$$$2, $$$$5 }') && \
+	  printf 'player %s: %d bytes stripped (limit %d), %d bytes of code room before the file grows a page\n' $$@ \
+	    $$$$(stat -c %s $$@.stripped) $(PLAYER_LIMIT) $$$$(($$$$3 - $$$$1 - $$$$2)) && rm -f $$@.stripped
+# libfixmath at -Os (rt-fixed has it at -O2; a desktop has speed to spare), one section per
+# function: the unused ones are dropped.
+$(BUILD)/obj/player-$(1)/libfixmath/%.o: $(FIXMATH_STAMP) Makefile
 	@mkdir -p $$(@D)
-	$$(CC) -std=c11 $(OPT) -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
+	$$(CC) -std=c11 -Os -ffunction-sections -fdata-sections -fno-pie $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$$*.c -o $$@
 $(BUILD)/obj/player-$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/player-$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
 	rm -f $$@ && ar rcs $$@ $$^
 -include $$(PLAYER_OBJS_$(1):.o=.d)
@@ -271,9 +279,9 @@ ARM_ELF_FIXED16 := $(BUILD)/arm/intro-fixed16.elf
 define arm_variant
 ARM_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/%.o,$(ARM_SRCS)) $(BUILD)/obj/arm-$(1)/start.o
 
-$(BUILD)/obj/arm-$(1)/%.o: %.c | $(FIXMATH_STAMP)
+$(BUILD)/obj/arm-$(1)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $$(@D)
-	$(ARM_CC) $(BASE_CFLAGS) $$(or $$(ARM_COLD_OPT),$(OPT)) $(ARM_CFLAGS) $(4) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
+	$(ARM_CC) $(BASE_CFLAGS) $(OPT) $(ARM_CFLAGS) $(4) $$(ARM_FILE_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=$(2) -DFX_COUNT_EVENTS=0 -MMD -MP -c $$< -o $$@
 
 $(BUILD)/obj/arm-$(1)/start.o: platform/arm/start.S
 	@mkdir -p $$(@D)
@@ -295,9 +303,25 @@ endef
 $(eval $(call arm_variant,fixed,1,$(BUILD)/obj/arm-fixed/libfixmath.a))
 $(eval $(call arm_variant,float,0,))
 $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED16_DEFS)))
-# The board's command line (src/app/intro.c, src/scene/knobs.c) runs once per command, outside the
-# counted rt_render: built for size, which keeps the fixed image within its 64 KiB.
-$(foreach r,fixed float fixed16,$(BUILD)/obj/arm-$(r)/src/app/intro.o $(BUILD)/obj/arm-$(r)/src/scene/knobs.o $(BUILD)/obj/arm-$(r)/src/core/prepare.o $(BUILD)/obj/arm-$(r)/src/core/probe.o $(BUILD)/obj/arm-$(r)/platform/board.o): ARM_COLD_OPT := -Os
+# Built for size, which keeps the fixed image within its 64 KiB: code that runs once per command or
+# once per frame before the counted rendering starts, and probe.c. ARM_COLD_SRCS are Thumb at -Os
+# (a quarter smaller than ARM code at -Os; the ARM926 runs both, the linker makes the calls between
+# them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 790 B
+# smaller than ARM -Os for about 2,000 instructions more a frame, uncounted). ARM_SMALL_SRCS are
+# ARM code at -Os: rt_scene_prepare and the camera's rt_view_init/rt_view_cull (64-bit arithmetic,
+# which Thumb-1 does through library calls: Thumb would save 580 B for 63,000 instructions more a
+# frame) and probe.c (rendering code of --mode probe, at -Os since docs/probe.md measured it).
+# `make qemu-profile` shows no function of the other files inside the frames. tests/scene_programs.sh
+# builds its ARM images with the same flags (make arm-file-flags).
+ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c
+ARM_COLD_CFLAGS := -Os -mthumb
+ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c src/core/camera.c
+ARM_SMALL_CFLAGS := -Os
+$(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_COLD_SRCS))): ARM_FILE_CFLAGS := $(ARM_COLD_CFLAGS)
+$(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_SMALL_SRCS))): ARM_FILE_CFLAGS := $(ARM_SMALL_CFLAGS)
+# One `FILE FLAGS` line per ARM source built with flags of its own (tests/scene_programs.sh).
+arm-file-flags:
+	@$(foreach f,$(ARM_COLD_SRCS),echo '$(f) $(ARM_COLD_CFLAGS)';) $(foreach f,$(ARM_SMALL_SRCS),echo '$(f) $(ARM_SMALL_CFLAGS)';)
 
 # The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.
 PROFILE_PLUGIN := $(BUILD)/arm/qemu_profile.so

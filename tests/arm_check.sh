@@ -84,9 +84,10 @@ fp_symbols() {
 }
 
 # Library code linked in (the map's archive members): the fixed image may only contain
-# libfixmath, newlib's memory functions and libgcc's integer division and bit counting.
+# libfixmath, newlib's memory functions, libgcc's integer division, multiplication and bit
+# counting, and the switch-table helpers of the Thumb code (Makefile: ARM_COLD_SRCS).
 members() { awk '/^Archive member included/,/^Discarded input sections/' "$1.map" | grep -o '[^/ ]*\.a([^)]*)' | sort -u; }
-ALLOWED='^(libfixmath\.a\(.*\)|libc\.a\(lib_a-(memcmp|memcpy|memcpy-stub|memset|memmove)\.o\)|libgcc\.a\(_(aeabi_u?ldivmod|clz[sd]i2|u?divsi3|dvmd_tls|u?divmoddi4|u?divdi3|u?moddi3|ashldi3|ashrdi3|lshrdi3|muldi3)\.o\))$'
+ALLOWED='^(libfixmath\.a\(.*\)|libc\.a\(lib_a-(memcmp|memcpy|memcpy-stub|memset|memmove)\.o\)|libgcc\.a\(_(aeabi_u?ldivmod|clz[sd]i2|u?divsi3|dvmd_tls|u?divmoddi4|u?divdi3|u?moddi3|ashldi3|ashrdi3|lshrdi3|muldi3|thumb1_case_[su]?[qh]i)\.o\))$'
 
 n=$(fp_instructions "$FIXED")
 [ "$n" -eq 0 ] && pass "arm: fixed image has no floating-point or coprocessor instruction" ||
@@ -109,7 +110,7 @@ fi
 
 others=$(members "$FIXED" | grep -Ev "$ALLOWED" || true)
 nm_=$(members "$FIXED" | wc -l)
-[ "$nm_" -gt 0 ] && [ -z "$others" ] && pass "arm: fixed image links only allowed library code ($nm_ members: libfixmath, memcpy/memset/memcmp, integer division)" ||
+[ "$nm_" -gt 0 ] && [ -z "$others" ] && pass "arm: fixed image links only allowed library code ($nm_ members: libfixmath, memcpy/memset/memcmp, integer division, Thumb switch tables)" ||
   fail "arm: fixed image links other library code: $(echo $others) ($nm_ members)"
 
 # Positive controls: the float image is full of soft-float helpers and libm, and the

@@ -4,8 +4,8 @@
 # what `rt-fixed render --scene` renders. Usage: tests/scene_programs.sh [--check] [--arm] [SCENE...]
 # Expects `make all`. With --check, exits non-zero when a compiled scene's frame differs.
 # With --arm (expects `make arm`), also links the fixed ARM926 image (src/app/intro.c) around each
-# scene and prints its code + read-only data + initialised data, the figure the 64 kB limit
-# applies to.
+# scene, each file built with make arm's flags, and prints its code + read-only data + initialised
+# data, the figure the 64 kB limit applies to: an image over it is a failure (exit status 1).
 set -u
 cd "$(dirname "$0")/.."
 B=build
@@ -47,18 +47,30 @@ build() {
 }
 
 # The fixed ARM image $1 around generated scene source $2 (named scn_intro) and effects header
-# $3: the core compiled for the ARM926 with the scene's effects; intro.c and knobs.c (the
-# board's command line, which no effect changes), the backend and libfixmath as `make arm`
-# built them.
+# $3: the core compiled for the ARM926 with the scene's effects, each file with the flags `make
+# arm` gives it (-O2, or its own: `make arm-file-flags`, such as Thumb at -Os for the timeline);
+# intro.c (the board's command line, which no effect changes), the backend and libfixmath as
+# `make arm` built them. The image must fit the 64 KiB limit (ARM_LIMIT).
 ARM_CC=arm-none-eabi-gcc
 ARM_ARCH="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
+ARM_LIMIT=65536
 AO=$B/obj/arm-fixed
+declare -A ARM_FILE_FLAGS=()
+load_arm_flags() {
+  local lines f flags
+  lines=$(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory arm-file-flags) || return 1
+  while read -r f flags; do
+    [ -n "$f" ] && ARM_FILE_FLAGS[$f]=$flags
+  done <<<"$lines"
+  [ ${#ARM_FILE_FLAGS[@]} -gt 0 ]
+}
 build_arm() {
   local objs=() f o
   mkdir -p "$1.obj"
   for f in $CORE "$2"; do
     o="$1.obj/arm-$(basename "${f%.c}").o"
-    $ARM_CC ${CFLAGS/-mgeneral-regs-only/} $ARM_ARCH -ffreestanding $INC -Iplatform -include "$3" -c "$f" -o "$o" || return 1
+    $ARM_CC ${CFLAGS/-mgeneral-regs-only/} $ARM_ARCH -ffreestanding ${ARM_FILE_FLAGS[$f]:-} $INC -Iplatform -include "$3" \
+      -c "$f" -o "$o" || return 1
     objs+=("$o")
   done
   $ARM_CC $ARM_ARCH -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
@@ -71,6 +83,10 @@ arm_size() { arm-none-eabi-size -A "$1" | awk '$1 ~ /^\.(text|rodata|data|ARM\.e
 text_size() { size -A "$1" | awk '$1 == ".text" { t = $2 } $1 == ".rodata" { r = $2 } END { print t, r }'; }
 
 bad=0
+if [ $arm = 1 ] && ! load_arm_flags; then
+  echo "scene_programs: make arm-file-flags failed: cannot build the ARM images as make arm does"
+  exit 1
+fi
 if [ $arm = 1 ]; then
   printf '%-24s %-44s %10s %10s %12s %10s\n' scene effects text rodata "text vs all" "ARM image"
 else
@@ -93,7 +109,12 @@ for scene in "${scenes[@]}"; do
   if [ $arm = 1 ]; then
     if $B/rt-scenec "$scene" -o "$gen-intro.c" --name scn_intro 2>>"$gen.log" &&
       build_arm "$gen-arm.elf" "$gen-intro.c" "$gen-fx.h"; then
-      printf ' %10d' "$(arm_size "$gen-arm.elf")"
+      asz=$(arm_size "$gen-arm.elf")
+      printf ' %10d' "$asz"
+      if [ "$asz" -gt $ARM_LIMIT ]; then
+        printf ' > %d (the 64 KiB limit)' $ARM_LIMIT
+        bad=1
+      fi
     else
       printf ' %10s' failed
       bad=1
@@ -115,5 +136,5 @@ for scene in "${scenes[@]}"; do
   fi
 done
 echo "(x86-64 host, -O2, unused sections dropped; 'text vs all' compares with the same program built with every effect)"
-[ $arm = 0 ] || echo "(ARM image: build/arm/intro-fixed.elf with the scene in place of the intro: code + rodata + data bytes)"
+[ $arm = 0 ] || echo "(ARM image: build/arm/intro-fixed.elf with the scene in place of the intro: code + rodata + data bytes, limit $ARM_LIMIT)"
 exit $bad

@@ -5,8 +5,9 @@
 # RGB bytes); the two passes must print the same checksums. Peak memory (max RSS, from
 # /usr/bin/time -v) of a full pass is compared with an 11-frame run of the same program, one
 # frame from every 120 (so that it runs the code of every part of the intro, whose pages count
-# too): it may exceed it by at most 512 KiB (run-to-run noise is
-# about 200 KiB; a leak of 440 bytes a frame would show). Exit status 1 when a check fails.
+# too; the larger of two runs): a full pass may exceed it by at most 512 KiB, and the check fails
+# when both passes do (single runs vary by up to ~500 KiB; a leak of 440 bytes a frame shows in
+# both). Exit status 1 when a check fails.
 set -u
 cd "$(dirname "$0")/.."
 step=${1:-1}
@@ -23,9 +24,14 @@ time_fields() {
 }
 for real in float fixed; do
   prog=$B/rt-$real
-  /usr/bin/time -v "$prog" render --size "$size" --frames all --step 120 --checksum >"$S/$real-11.txt" 2>"$S/$real-11.time" ||
-    { echo "soak rt-$real: 11-frame run failed"; status=1; continue; }
-  read -r rss11 wall11 < <(time_fields "$S/$real-11.time")
+  # the 11-frame reference twice, its larger peak kept (single runs vary by up to ~500 KiB)
+  rss11=0
+  for ref in 1 2; do
+    /usr/bin/time -v "$prog" render --size "$size" --frames all --step 120 --checksum >"$S/$real-11.txt" 2>"$S/$real-11.time" ||
+      { echo "soak rt-$real: 11-frame run failed"; status=1; continue 2; }
+    read -r r wall11 < <(time_fields "$S/$real-11.time")
+    [ "$r" -gt "$rss11" ] && rss11=$r
+  done
   line="soak rt-$real $size:"
   for pass in 1 2; do
     if ! /usr/bin/time -v "$prog" render --size "$size" --frames all --step "$step" --checksum \
@@ -45,7 +51,7 @@ for real in float fixed; do
   elif [ "$frames" -lt 2 ] || ! head -10 "$S/$real-pass1.txt" | grep -q ' fnv64=[0-9a-f]\{16\}$'; then
     echo "$line: FAIL: no checksums"
     status=1
-  elif [ "$rss1" -gt $((rss11 + 512)) ] || [ "$rss2" -gt $((rss11 + 512)) ]; then
+  elif [ "$rss1" -gt $((rss11 + 512)) ] && [ "$rss2" -gt $((rss11 + 512)) ]; then
     echo "$line: FAIL: peak memory grows with the number of frames"
     status=1
   else

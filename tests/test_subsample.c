@@ -69,14 +69,23 @@ static void test_criteria(void **state)
         s = base_sample();
         s.cell = 5;
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
-        /* 2. any light's state: shadow edge, highlight */
-        s = base_sample();
-        s.lights = 1; /* light 1 unlit */
-        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        /* 2. a highlight at some corner, always; lit and unlit corners where their
+         * contributions differ by more than half the threshold (a shadow edge that shows) */
         s = base_sample();
         s.lights = 2 | 1 << 2; /* a highlight of light 0 */
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
-        /* 3. an object at a secondary level, or the shape of the ray tree */
+        s = base_sample();
+        s.lights = 1;                                                 /* light 1 unlit */
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_NONE); /* same colours */
+        s.hits[0].contrib[2] = 140 - 8;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_NONE);
+        s.hits[0].contrib[2] = 140 - 9; /* a faint shadow is interpolated, a darker one splits */
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        s.hits[0].contrib[2] = 140;
+        s.hits[1].contrib[0] = 30 + 9; /* at any node */
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        /* 3. an object at a secondary level, or the shape of the ray tree, where a node that
+         * differs contributes more than half the threshold (node 1: 30) */
         s = base_sample();
         s.hits[1].object = 4;
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
@@ -85,8 +94,23 @@ static void test_criteria(void **state)
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
         s = base_sample();
         s.nhits = 3;
-        s.hits[2] = (rt_hit_rec){.object = 5, .level = 1};
+        s.hits[2] = (rt_hit_rec){.object = 5, .level = 1, .contrib = {0, 9, 0}};
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        s.hits[2].contrib[1] = 8; /* a faint node more: interpolated */
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_NONE);
+        s.hits[0].contrib[0] = 100 + 9; /* and then the others within half the threshold */
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        {
+            /* a faint reflection seen at some corners (node 1: 8 at most on either side) */
+            rt_sample f = base_sample(), g = base_sample();
+            f.hits[1].contrib[0] = f.hits[1].contrib[1] = f.hits[1].contrib[2] = 8;
+            g.hits[1] = (rt_hit_rec){.object = RT_NO_OBJECT, .level = 1, .contrib = {2, 3, 4}};
+            const rt_sample *kf[4] = {&f, &f, &f, &f};
+            kf[which] = &g;
+            assert_int_equal(rt_corners_differ(kf, 16), RT_SPLIT_NONE);
+            g.hits[1].contrib[2] = 9;
+            assert_int_equal(rt_corners_differ(kf, 16), RT_SPLIT_SECONDARY);
+        }
         /* nodes beyond the stored ones still count through nhits */
         rt_sample big = base_sample(), big2;
         big.nhits = RT_SAMPLE_MAX_HITS + 3;
@@ -109,12 +133,15 @@ static void test_criteria(void **state)
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_CONTRIB);
         assert_int_equal(compare_with(&s, which, 17), RT_SPLIT_NONE);
         assert_int_equal(compare_with(&s, which, 255), RT_SPLIT_NONE);
-        /* the order of the checks: object before light before secondary before contribution */
+        /* the order of the checks: object before highlight before secondary before shadow
+         * before contribution */
         s = base_sample();
-        s.hits[1].object = 4;
-        s.hits[0].contrib[0] = 0;
-        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
         s.lights = 1 << 2; /* light 0 unlit */
+        s.hits[0].contrib[0] = 0;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
+        s.hits[1].object = 4;
+        assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_SECONDARY);
+        s.lights = 2 | 1 << 2; /* a highlight of light 0 */
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_LIGHT);
         s.hits[0].object = 7;
         assert_int_equal(compare_with(&s, which, 16), RT_SPLIT_OBJECT);
@@ -377,7 +404,8 @@ static void one_sphere_scene(rt_scene *s, double x, double y, double r)
 }
 
 /* Renders the scene in full (every sample kept) and adaptive mode. For every pair of
- * neighbouring pixels whose full samples differ for `reason`, checks that the adaptive render
+ * neighbouring pixels whose full samples differ for `reason` (as the adaptive render's own
+ * threshold sees them: a shadow or reflection too faint to show is no edge), checks that the adaptive render
  * traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
  * the full render's colours there. Returns the number of such pairs. */
 static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
@@ -404,7 +432,7 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
                 if (x2 >= W || y2 >= H)
                     continue;
                 const rt_sample *k[4] = {&full[y][x], &full[y][x], &full[y2][x2], &full[y2][x2]};
-                enum rt_split_reason why = rt_corners_differ(k, 255);
+                enum rt_split_reason why = rt_corners_differ(k, r_to_byte(pa.threshold));
                 if (why == RT_SPLIT_NONE)
                     continue;
                 if (why != reason) {
@@ -603,7 +631,8 @@ static void test_adaptive_reference(void **state)
 /* ---- probe mode ----------------------------------------------------------------------------- */
 
 /* Renders the scene in full, adaptive and probe mode. Checks that at least min_percent of the
- * pixels next to a pixel of another record (rt_probe_same) were shaded or probed, that no pixel is off by more than
+ * pixels next to a pixel of another record (rt_probe_same) that the split criteria tell apart
+ * were shaded or probed, that no pixel is off by more than
  * max_err levels from the full render (exact_edges: pixels on those edges not at all), and
  * that probe mode shaded no more points than adaptive mode and probed some. Returns the shaded
  * points. */
@@ -632,8 +661,13 @@ static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_p
             for (int d = 0; d < 4; d++) {
                 int x2 = x + (d == 0) - (d == 1), y2 = y + (d == 2) - (d == 3);
                 if (x2 >= 0 && y2 >= 0 && x2 < W && y2 < H &&
-                    !rt_probe_same(&full[y][x], &full[y2][x2]))
-                    on_edge = 1;
+                    !rt_probe_same(&full[y][x], &full[y2][x2])) {
+                    /* an edge the split criteria see at the render's threshold (a shadow or
+                     * a reflection too faint to show is none) */
+                    const rt_sample *k[4] = {&full[y][x], &full[y][x], &full[y2][x2],
+                                             &full[y2][x2]};
+                    on_edge |= rt_corners_differ(k, r_to_byte(pa.threshold)) != RT_SPLIT_NONE;
+                }
             }
             for (int ch = 0; ch < 3; ch++) {
                 int e =

@@ -257,6 +257,8 @@ static inline int rt_cell_tone(uint8_t cell)
 
 /* Light i's state at a sample's primary hit: 0 unlit, 1 lit, 2 highlight. */
 static inline int rt_light_state(const rt_sample *sm, int i) { return sm->lights >> (2 * i) & 3; }
+/* The bits of rt_sample.lights that are set only by a highlight (state 2). */
+#define RT_LIGHTS_HIGHLIGHT 0xAAu
 
 /* Adaptive subsampling: square sizes are powers of two up to RT_GRID_MAX; level 0 is the
  * --grid square, level k its halves k times over. */
@@ -297,8 +299,11 @@ typedef struct rt_params {
 enum rt_split_reason {
     RT_SPLIT_NONE,      /* the corners agree: interpolate */
     RT_SPLIT_OBJECT,    /* primary object, or its checker cell, differs */
-    RT_SPLIT_LIGHT,     /* a light's state differs */
-    RT_SPLIT_SECONDARY, /* the ray tree's shape or an object at a secondary level differs */
+    RT_SPLIT_LIGHT,     /* a highlight at some corners, or lit and unlit corners whose
+                           contributions differ by more than half the threshold */
+    RT_SPLIT_SECONDARY, /* the ray tree's shape or an object at a secondary level differs, in
+                           a node contributing more than half the threshold, or with
+                           contributions differing by more than that */
     RT_SPLIT_CONTRIB,   /* a node's contribution differs by more than the threshold */
     RT_SPLIT_COUNT      /* the number of reasons, RT_SPLIT_NONE included */
 };

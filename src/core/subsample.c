@@ -35,6 +35,31 @@ int rt_render_band_count(const rt_params *p, int height)
 /* The contribution bytes of node j of a sample (rt_hit_rec.contrib). */
 #define SS_CONTRIB(sm, j) ((sm)->hits[j].contrib)
 
+/* Do the corners' ray trees differ only in faint nodes? Every node below the primary hit that
+ * is not the same (object and level) at the same place in corner 0's tree and in another
+ * corner's has contributions of at most lim in every channel, and every tree is stored whole. */
+static __attribute__((noinline)) int ss_faint_tree(const rt_sample *const k[4], int lim)
+{
+    const rt_sample *a = k[0];
+    for (int i = 0; i < 4; i++)
+        if (k[i]->nhits > RT_SAMPLE_MAX_HITS)
+            return 0;
+    for (int i = 1; i < 4; i++) {
+        const rt_sample *b = k[i];
+        const int na = a->nhits, nb = b->nhits, n = na > nb ? na : nb;
+        for (int j = 1; j < n; j++) {
+            if (j < na && j < nb && a->hits[j].object == b->hits[j].object &&
+                a->hits[j].level == b->hits[j].level)
+                continue;
+            for (int ch = 0; ch < 3; ch++)
+                if ((j < na && a->hits[j].contrib[ch] > lim) ||
+                    (j < nb && b->hits[j].contrib[ch] > lim))
+                    return 0;
+        }
+    }
+    return 1;
+}
+
 enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
 {
     const rt_sample *a = k[0], *b = k[1], *c = k[2], *d = k[3];
@@ -52,21 +77,40 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
             uint8_t nhits, lights, cell, flags; /* rt_sample's, in its order */
         } b;
     } diff = {.w = (wa ^ wb) | (wa ^ wc) | (wa ^ wd)};
+    /* A difference of structure that need not show in the colours, a light lit at some corners
+     * and not at others or a ray tree with other objects, splits only where it does: where the
+     * contributions differ by more than half the threshold. A faint shadow (a fill light's,
+     * or the sun's at a grazing angle) or a faint reflection edge is interpolated like any
+     * gradient. A highlight at some corner always splits (its peak can lie between them). */
+    int weak = 0; /* 1: lit and unlit corners, 2: faint tree differences (the reason) */
+    int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
     if (diff.w) {
         if (diff.b.cell)
             return RT_SPLIT_OBJECT;
-        if (diff.b.lights)
+        if (diff.b.lights & RT_LIGHTS_HIGHLIGHT)
             return RT_SPLIT_LIGHT;
-        if (diff.b.nhits)
-            return RT_SPLIT_SECONDARY;
+        weak = diff.b.lights ? 1 : 0;
+        if (diff.b.nhits) {
+            if (!ss_faint_tree(k, thr8 / 2))
+                return RT_SPLIT_SECONDARY;
+            weak |= 2;
+        }
     }
-    const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
-    for (int j = 1; j < n; j++) {
-        const unsigned ob = a->hits[j].object, lv = a->hits[j].level;
-        if (b->hits[j].object != ob || c->hits[j].object != ob || d->hits[j].object != ob ||
-            b->hits[j].level != lv || c->hits[j].level != lv || d->hits[j].level != lv)
-            return RT_SPLIT_SECONDARY;
-    }
+    if (!(weak & 2))
+        for (int j = 1; j < n; j++) {
+            const unsigned ob = a->hits[j].object, lv = a->hits[j].level;
+            if (b->hits[j].object != ob || c->hits[j].object != ob || d->hits[j].object != ob ||
+                b->hits[j].level != lv || c->hits[j].level != lv || d->hits[j].level != lv) {
+                if (!ss_faint_tree(k, thr8 / 2))
+                    return RT_SPLIT_SECONDARY;
+                weak |= 2;
+                break;
+            }
+        }
+    if (weak & 2) /* the nodes every corner has (the others are faint) */
+        for (int i = 1; i < 4; i++)
+            n = k[i]->nhits < n ? k[i]->nhits : n;
+    const int lim = weak ? thr8 / 2 : thr8;
     for (int j = 0; j < n; j++) {
         const uint8_t *pa = SS_CONTRIB(a, j), *pb = SS_CONTRIB(b, j), *pc = SS_CONTRIB(c, j),
                       *pd = SS_CONTRIB(d, j);
@@ -80,8 +124,8 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
             v = pd[ch];
             lo = v < lo ? v : lo;
             hi = v > hi ? v : hi;
-            if (hi - lo > thr8)
-                return RT_SPLIT_CONTRIB;
+            if (hi - lo > lim)
+                return weak & 2 ? RT_SPLIT_SECONDARY : weak ? RT_SPLIT_LIGHT : RT_SPLIT_CONTRIB;
         }
     }
     return RT_SPLIT_NONE;

@@ -10,7 +10,8 @@
  * model): step holds, linear and smooth (ease in and out) blend the two keys, spline follows a
  * Catmull-Rom curve through the neighbouring keys so that a path flows through its keys without
  * stopping. Before the first key a track holds the first value, after the last key the last.
- * Descriptions point at their tracks and keys, so a compiled scene is constant data.
+ * Descriptions point at their objects, lights, materials, tracks and keys, so a compiled scene is
+ * constant data of just the size it needs.
  */
 #ifndef FIXRAY_SCN_H
 #define FIXRAY_SCN_H
@@ -75,11 +76,15 @@ typedef struct scn_param_info {
 
 extern const scn_param_info scn_params[SCN_P_COUNT];
 
+/* 16 bytes: the time and the interpolation share a word (a scene holds hundreds of keys, and
+ * the compiled ones count against the 64 KiB images). */
 typedef struct scn_key {
-    int32_t time_ms;
-    uint8_t interp; /* enum scn_interp, towards the next key */
+    signed int time_ms : 29; /* 0 .. SCN_MAX_DURATION_MS (< 2^28) */
+    unsigned int interp : 3; /* enum scn_interp, towards the next key */
     int32_t v[3];
 } scn_key;
+_Static_assert(SCN_MAX_DURATION_MS < (1 << 28) && SCN_INTERP_COUNT <= 8,
+               "scn_key's bit-fields hold every key time and interpolation");
 
 typedef struct scn_track {
     uint8_t param;  /* enum scn_param */
@@ -113,9 +118,11 @@ typedef struct scn_desc {
     int32_t background[3], ambient[3];
     int32_t eye[3], at[3], up[3], fov;
     int nobjects, nlights, nmaterials, ntracks;
-    scn_object objects[RT_MAX_OBJECTS];
-    scn_light lights[RT_MAX_LIGHTS];
-    scn_material materials[RT_MAX_MATERIALS];
+    /* nobjects objects, nlights lights, nmaterials materials: arrays of just that length in a
+     * compiled scene (NULL when empty), the parser's storage (scn_file) in a parsed one. */
+    const scn_object *objects;
+    const scn_light *lights;
+    const scn_material *materials;
     const scn_track *tracks;
     const scn_key *keys;
 } scn_desc;

@@ -32,6 +32,44 @@ int scn_write_c(FILE *out, const scn_desc *d, const char *name, const char *sour
         }
         fprintf(out, "};\n\n");
     }
+    if (d->nobjects) {
+        fprintf(out, "static const scn_object %s_objects[%d] = {\n", name, d->nobjects);
+        for (int i = 0; i < d->nobjects; i++) {
+            const scn_object *o = &d->objects[i];
+            fprintf(out, "    {%d, %d, ", o->kind, o->material);
+            cw_write_ints(out, o->center, 3);
+            fprintf(out, ", %ld, ", (long)o->radius);
+            cw_write_ints(out, o->normal, 3);
+            fprintf(out, ", %ld},\n", (long)o->offset);
+        }
+        fprintf(out, "};\n\n");
+    }
+    if (d->nlights) {
+        fprintf(out, "static const scn_light %s_lights[%d] = {\n", name, d->nlights);
+        for (int i = 0; i < d->nlights; i++) {
+            fprintf(out, "    {");
+            cw_write_ints(out, d->lights[i].pos, 3);
+            fprintf(out, ", ");
+            cw_write_ints(out, d->lights[i].color, 3);
+            fprintf(out, "},\n");
+        }
+        fprintf(out, "};\n\n");
+    }
+    if (d->nmaterials) {
+        fprintf(out, "static const scn_material %s_materials[%d] = {\n", name, d->nmaterials);
+        for (int i = 0; i < d->nmaterials; i++) {
+            const scn_material *m = &d->materials[i];
+            fprintf(out, "    {");
+            cw_write_ints(out, m->diffuse, 3);
+            fprintf(out, ", ");
+            cw_write_ints(out, m->color2, 3);
+            fprintf(out, ", %ld, %ld, %ld, %ld, %ld, %ld, %ld, %d, %d, %d, %d},\n",
+                    (long)m->ambient, (long)m->specular, (long)m->reflect, (long)m->transmit,
+                    (long)m->ior, (long)m->scale, (long)m->turbulence, m->shininess, m->texture,
+                    m->palette, m->octaves);
+        }
+        fprintf(out, "};\n\n");
+    }
     fprintf(out, "const scn_desc %s = {\n", name);
     fprintf(out, "    .duration_ms = %ld, .fps = %ld, .depth = %ld,\n", (long)d->duration_ms,
             (long)d->fps, (long)d->depth);
@@ -51,37 +89,18 @@ int scn_write_c(FILE *out, const scn_desc *d, const char *name, const char *sour
     fprintf(out, "    .fov = %ld,\n", (long)d->fov);
     fprintf(out, "    .nobjects = %d, .nlights = %d, .nmaterials = %d, .ntracks = %d,\n",
             d->nobjects, d->nlights, d->nmaterials, d->ntracks);
-    fprintf(out, "    .objects = {\n");
-    for (int i = 0; i < d->nobjects; i++) {
-        const scn_object *o = &d->objects[i];
-        fprintf(out, "        {%d, %d, ", o->kind, o->material);
-        cw_write_ints(out, o->center, 3);
-        fprintf(out, ", %ld, ", (long)o->radius);
-        cw_write_ints(out, o->normal, 3);
-        fprintf(out, ", %ld},\n", (long)o->offset);
-    }
-    fprintf(out, "    },\n    .lights = {\n");
-    for (int i = 0; i < d->nlights; i++) {
-        fprintf(out, "        {");
-        cw_write_ints(out, d->lights[i].pos, 3);
-        fprintf(out, ", ");
-        cw_write_ints(out, d->lights[i].color, 3);
-        fprintf(out, "},\n");
-    }
-    fprintf(out, "    },\n    .materials = {\n");
-    for (int i = 0; i < d->nmaterials; i++) {
-        const scn_material *m = &d->materials[i];
-        fprintf(out, "        {");
-        cw_write_ints(out, m->diffuse, 3);
-        fprintf(out, ", ");
-        cw_write_ints(out, m->color2, 3);
-        fprintf(out, ", %ld, %ld, %ld, %ld, %ld, %ld, %ld, %d, %d, %d, %d},\n", (long)m->ambient,
-                (long)m->specular, (long)m->reflect, (long)m->transmit, (long)m->ior,
-                (long)m->scale, (long)m->turbulence, m->shininess, m->texture, m->palette,
-                m->octaves);
-    }
-    fprintf(out, "    },\n");
-    fprintf(out, "    .tracks = %s%s,\n    .keys = %s%s,\n};\n", d->ntracks ? name : "NULL",
-            d->ntracks ? "_tracks" : "", d->ntracks ? name : "NULL", d->ntracks ? "_keys" : "");
+    /* each array by its name, or NULL when the scene has none of that kind */
+    const struct {
+        const char *field;
+        int n;
+    } arrays[] = {{"objects", d->nobjects},
+                  {"lights", d->nlights},
+                  {"materials", d->nmaterials},
+                  {"tracks", d->ntracks},
+                  {"keys", d->ntracks}};
+    for (int i = 0; i < 5; i++)
+        fprintf(out, "    .%s = %s%s%s,\n", arrays[i].field, arrays[i].n ? name : "NULL",
+                arrays[i].n ? "_" : "", arrays[i].n ? arrays[i].field : "");
+    fprintf(out, "};\n");
     return ferror(out) ? -1 : 0;
 }

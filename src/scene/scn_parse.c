@@ -309,7 +309,7 @@ static int ps_light(ps_state *ps, ps_tok kw)
     ps_tok name;
     if (ps_new_name(ps, kw, &name, ps->f->light_names[d->nlights]) != 0)
         return -1;
-    scn_light *l = &d->lights[d->nlights];
+    scn_light *l = &ps->f->lights[d->nlights];
     static const char expected[] = "pos, color";
     unsigned seen = 0;
     ps_tok t, prev = {0};
@@ -351,7 +351,7 @@ static int ps_material(ps_state *ps, ps_tok kw)
     ps_tok name;
     if (ps_new_name(ps, kw, &name, ps->f->material_names[d->nmaterials]) != 0)
         return -1;
-    scn_material *m = &d->materials[d->nmaterials];
+    scn_material *m = &ps->f->materials[d->nmaterials];
     /* Defaults (docs/scene-format.md): a light grey matte surface. */
     *m = (scn_material){.diffuse = {SCN_ONE * 4 / 5, SCN_ONE * 4 / 5, SCN_ONE * 4 / 5},
                         .ambient = SCN_ONE,
@@ -456,7 +456,7 @@ static int ps_object(ps_state *ps, ps_tok kw, int kind)
     ps_tok name;
     if (ps_new_name(ps, kw, &name, ps->f->object_names[d->nobjects]) != 0)
         return -1;
-    scn_object *o = &d->objects[d->nobjects];
+    scn_object *o = &ps->f->objects[d->nobjects];
     *o = (scn_object){.kind = (uint8_t)kind};
     const char *expected =
         kind == RT_SPHERE ? "material, center, radius" : "material, normal, offset";
@@ -558,8 +558,10 @@ static int ps_key(ps_state *ps, ps_tok kw)
     if (!ps_next(ps, &t))
         return PS_FAIL(ps, target.s, "key '%.*s' needs a time in seconds", target.len, target.s);
     ps_tok time_tok = t;
-    if (ps_time(ps, t, "key time", &key.time_ms) != 0)
+    int32_t time_ms;
+    if (ps_time(ps, t, "key time", &time_ms) != 0)
         return -1;
+    key.time_ms = time_ms;
     if (!ps_next(ps, &t))
         return PS_FAIL(ps, target.s,
                        "key '%.*s' needs an interpolation (step, linear, smooth or "
@@ -571,7 +573,7 @@ static int ps_key(ps_state *ps, ps_tok kw)
                        "unknown interpolation '%.*s' (expected step, linear, smooth or "
                        "spline)",
                        t.len, t.s);
-    key.interp = (uint8_t)interp;
+    key.interp = (unsigned)interp;
     if (ps_values(ps, target, param, key.v) != 0 || ps_end(ps) != 0)
         return -1;
 
@@ -758,6 +760,9 @@ int scn_parse(const char *path, const char *text, size_t len, scn_file *f, char 
     d->up[1] = SCN_ONE;
     d->fov = 50 * SCN_ONE;
     d->ambient[0] = d->ambient[1] = d->ambient[2] = SCN_ONE / 10;
+    d->objects = f->objects;
+    d->lights = f->lights;
+    d->materials = f->materials;
     d->tracks = f->tracks;
     d->keys = f->keys;
 

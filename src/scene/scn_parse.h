@@ -13,10 +13,14 @@
 #define SCN_MAX_FILE_BYTES (1L << 20)
 #define SCN_MAX_LINE 1024
 
-/* A parsed scene: the description and the storage its tracks and keys point into, plus the
- * names of its items (for messages and statistics). About 100 kB: keep one static. */
+/* A parsed scene: the description and the storage its objects, lights, materials, tracks and
+ * keys point into, plus the names of its items (for messages and statistics). About 100 kB: keep
+ * one static (and do not copy it: the description points into it). */
 typedef struct scn_file {
     scn_desc desc;
+    scn_object objects[RT_MAX_OBJECTS];
+    scn_light lights[RT_MAX_LIGHTS];
+    scn_material materials[RT_MAX_MATERIALS];
     scn_track tracks[SCN_MAX_TRACKS];
     scn_key keys[SCN_MAX_KEYS];
     char object_names[RT_MAX_OBJECTS][SCN_MAX_NAME + 1];
