@@ -1052,6 +1052,98 @@ static void test_checker_cells(void **state)
     assert_true(worst <= 6); /* and each pixel took its own cell's tone (40 levels apart) */
 }
 
+/* The worst channel difference between two frames and the number of pixels that differ by more
+ * than 8 levels in some channel. */
+static int frame_diff(const uint32_t *a, const uint32_t *b, int *over8)
+{
+    int worst = 0;
+    *over8 = 0;
+    for (int i = 0; i < W * H; i++) {
+        int m = 0;
+        for (int ch = 0; ch < 24; ch += 8) {
+            int d = abs((int)(a[i] >> ch & 255) - (int)(b[i] >> ch & 255));
+            m = d > m ? d : m;
+        }
+        worst = m > worst ? m : worst;
+        *over8 += m > 8;
+    }
+    return worst;
+}
+
+/* A marble sphere filling most of the frame, lit by one light with a highlight. */
+static void noise_scene(rt_scene *s, double scale, int octaves)
+{
+    scene_base(s);
+    int m = add_material(s,
+                         (rt_material){.ambient = from_d(0.6),
+                                       .specular = from_d(0.3),
+                                       .shininess = 20,
+                                       .tex = {.kind = RT_TEX_MARBLE,
+                                               .palette = RT_PAL_MARBLE,
+                                               .octaves = (uint8_t)octaves,
+                                               .scale = from_d(scale),
+                                               .turbulence = from_d(1.2)}});
+    add_sphere(s, m, 0, 0, 0, 2.0);
+    s->camera = (rt_camera){vd(0, 0.5, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(45)};
+    rt_scene_prepare(s);
+}
+
+/* Noise textures shaded per pixel: adaptive mode does not split a square on a noise texture down
+ * to single pixels for the texture's colour when its corners agree on the lighting A and the
+ * rest B (colour = texture x A + B); each pixel gets the texture at its own hit with A and B
+ * interpolated. Against full mode (every pixel shaded) the frame stays within a bound that a
+ * texture evaluated wrongly per pixel breaks: full frames of the same sphere with its texture
+ * shifted by 2% in scale, or with fewer octaves, are compared with the same bound and must fail
+ * it. The old splitting (a view whose eye is not the prepared one) traces far more points. */
+static void test_noise_pixels(void **state)
+{
+    (void)state;
+    static rt_scene s, split, scaled, coarse;
+    static uint32_t px_split[H * W], px_scaled[H * W], px_coarse[H * W];
+    noise_scene(&s, 2.2, 4);
+    noise_scene(&scaled, 2.2 * 1.02, 4);
+    noise_scene(&coarse, 2.2, 2);
+    split = s;
+    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL, .footprint = 1};
+    const rt_params pa = {.depth = s.depth,
+                          .mode = RT_MODE_ADAPTIVE,
+                          .grid = 8,
+                          .threshold = TS_THRESHOLD,
+                          .footprint = 1};
+    rt_stats sf = {0}, sa = {0}, ss = {0}, sx = {0};
+    rt_render(&s, &v, &pf, fullpx, W, &sf, NULL, NULL);
+    rt_render(&s, &v, &pa, adpx, W, &sa, work, traced);
+    rt_render(&split, &v, &pa, px_split, W, &ss, work, NULL);
+    rt_render(&scaled, &v, &pf, px_scaled, W, &sx, NULL, NULL);
+    rt_render(&coarse, &v, &pf, px_coarse, W, &sx, NULL, NULL);
+    int o_a, o_s, o_scaled, o_coarse, untraced = 0;
+    const int w_a = frame_diff(adpx, fullpx, &o_a), w_s = frame_diff(px_split, fullpx, &o_s);
+    const int w_scaled = frame_diff(px_scaled, fullpx, &o_scaled),
+              w_coarse = frame_diff(px_coarse, fullpx, &o_coarse);
+    for (int i = 0; i < W * H; i++)
+        untraced += !traced[i];
+    print_message("noise pixels: %lu points traced (%lu with the texture split, %d pixels), %lu "
+                  "squares filled per pixel, %lu pixels textured; against full mode: worst %d "
+                  "levels, %d pixels over 8 (split: %d, %d); texture 2%% larger: %d, %d; 2 "
+                  "octaves: %d, %d\n",
+                  (unsigned long)sa.rays_primary, (unsigned long)ss.rays_primary, W * H,
+                  (unsigned long)sa.noise_squares, (unsigned long)sa.noise_pixels, w_a, o_a, w_s,
+                  o_s, w_scaled, o_scaled, w_coarse, o_coarse);
+    assert_int_equal(ss.noise_squares, 0);
+    assert_true(sa.noise_squares > 0 && sa.noise_pixels > 0);
+    assert_true(sa.noise_pixels <= (uint32_t)untraced);
+    /* fewer points traced than with the texture split */
+    assert_true(sa.rays_primary * 5 <= ss.rays_primary * 4);
+    /* the bound, and a wrong texture per pixel would break it */
+    const int bound_worst = 40, bound_over8 = W * H / 100;
+    assert_true(w_a <= bound_worst && o_a <= bound_over8);
+    assert_true(w_scaled > bound_worst || o_scaled > bound_over8);
+    assert_true(w_coarse > bound_worst || o_coarse > bound_over8);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1067,6 +1159,7 @@ int main(void)
         cmocka_unit_test(test_min_contrib),
         cmocka_unit_test(test_one_tone_checker),
         cmocka_unit_test(test_checker_cells),
+        cmocka_unit_test(test_noise_pixels),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),

@@ -228,7 +228,12 @@ typedef struct rt_sample {
     /* alt_known 1 (adaptive mode, a primary hit on a two-tone checker seen from the prepared
      * eye): alt is the colour the point would have in a cell of the other colour (the same
      * lights, highlights and secondary rays, the other diffuse colour) as the bytes of a pixel
-     * (r_to_byte of each channel: red, green, blue); else 0. */
+     * (r_to_byte of each channel: red, green, blue). alt_known 2 (adaptive mode, a primary hit
+     * on a noise texture seen from the prepared eye, no secondary ray: nhits 1): the colour is
+     * b x A + B, b the texture's colour at the hit, A the lighting that multiplies it (ambient
+     * and Lambert terms) and B the rest (highlights); alt holds A / 2 as bytes (r_to_byte,
+     * A <= 2) and hits[1].contrib, the node past the tree, B as bytes (clamped to [0, 1]: a B
+     * of 1 or more gives a pixel of 1 whatever b x A adds). Else 0. */
     uint8_t alt[3];
     uint8_t alt_known;
 } rt_sample;
@@ -315,6 +320,9 @@ typedef struct rt_stats {
     uint32_t texture_squares; /* adaptive: squares split only by checker cells, filled instead
                                  with the cell of each pixel (subsample.c) */
     uint32_t texture_pixels;  /* adaptive: pixels of those squares whose cell was looked up */
+    uint32_t noise_squares;   /* adaptive: squares on a noise texture split only by its colour,
+                                 filled instead with each pixel's own texture (subsample.c) */
+    uint32_t noise_pixels;    /* adaptive: pixels of those squares whose texture was evaluated */
 } rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the

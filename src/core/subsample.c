@@ -433,20 +433,31 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
     row[stride + 1] = ss_pixel(&m[1].color);
 }
 
-/* The cell (rt_sample.cell) of the checker of material m on plane `id` at pixel (x, y): the
- * primary ray and its hit on the plane as the tracer forms them (rt_view_ray,
- * rt_nearest_primary, the point along the ray), so the same cell as a full shade finds; 0 for a
- * ray that misses the plane (a corner's neighbour, by rounding). Counted in texture_pixels. */
+/* Pixel (x, y)'s primary ray and its hit on object `id` as the tracer forms them (rt_view_ray,
+ * rt_nearest_primary, the point along the ray): 1 and the point in *at, its distance in *t, or 0
+ * for a ray that misses the object (a corner's neighbour, by rounding). */
+static __attribute__((noinline)) int ss_hit_at(ss_ctx *c, int id, int x, int y, vec3 *at, real *t)
+{
+    const rt_view *v = c->view;
+    dir3 d = rt_view_ray(v, x, y);
+    if (rt_nearest_primary(c->scene, d, (uint32_t)1 << id, t) != id)
+        return 0;
+    *at = v3_along_in(v->eye, d, *t);
+    return 1;
+}
+
+/* The cell (rt_sample.cell) of the checker of material m on plane `id` at pixel (x, y), where
+ * its primary ray meets the plane (ss_hit_at), so the same cell as a full shade finds; 0 for a
+ * ray that misses the plane. Counted in texture_pixels. */
 static __attribute__((cold, noinline)) uint8_t ss_cell_at(ss_ctx *c, const rt_material *m, int id,
                                                           int x, int y)
 {
-    const rt_view *v = c->view;
     c->stats->texture_pixels++;
-    dir3 d = rt_view_ray(v, x, y);
+    vec3 at;
     real t;
     uint8_t cell = 0;
-    if (rt_nearest_primary(c->scene, d, (uint32_t)1 << id, &t) == id)
-        rt_texture_color(m, v3_along_in(v->eye, d, t), 0, 0, c->stats, &cell);
+    if (ss_hit_at(c, id, x, y, &at, &t))
+        rt_texture_color(m, at, 0, 0, c->stats, &cell);
     return cell;
 }
 
@@ -475,7 +486,7 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
     const rt_sample *kp[4];
     for (int i = 0; i < 4; i++) {
         const rt_sample *q = sm + (i >> 1) * h * c->lstride + (i & 1) * w; /* corner i */
-        if (!q->alt_known) /* its other tone's colour is known */
+        if (q->alt_known != 1) /* its other tone's colour is known */
             return 0;
         int t = rt_cell_tone(q->cell);
         tc[t][i] = q->color;
@@ -552,6 +563,97 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
     return 1;
 }
 
+/* A square that rt_corners_differ would split for a contribution (RT_SPLIT_CONTRIB: one object,
+ * the same light states and ray tree), k[] its corners (sm: its (0, 0) in the lattice): when
+ * every corner lies on a noise texture with its A and B kept (rt_sample.alt_known 2: no
+ * secondary ray) and they agree within the threshold on the part of their colour the texture
+ * does not change, t A + B for one texture colour t (the corners' mean, sum (C - B) / sum A
+ * clamped to [0, 1]; in bytes, multiplied out by sum A), the square is not split for the
+ * texture's colour: each pixel gets b x A + B, A and B interpolated bilinearly from the corners'
+ * (ss_fill, as bytes: A / 2 and B are within [0, 1]) and b the texture at the pixel's own hit (ss_hit_at: a ray and the object's test, no shading; the
+ * tracer's octave rule). Returns 1 when it filled the pixels the square owns (as ss_fill:
+ * `cols` x `rows`; points traced before keep their colour), 0 to split (also when a pixel's ray
+ * misses the object: the split writes every pixel again). In integers: A in Q15 (byte x 257,
+ * below 2), b and B in Q16.16, b x A below 2^32; the criterion's terms below 2^20. 1.2 kB of
+ * stack, less than the nested shading it replaces. */
+static __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm,
+                                              const rt_sample *const k[4], int x0, int y0, int w,
+                                              int h, int own)
+{
+    /* ab[corner]: A / 2 and B as colours (a byte b as b 257 / 2^16, within 2^-16 of b / 255) */
+    rt_color ab[2][4];
+    const rt_color *ka[4], *kb[4];
+    int32_t num[3] = {0, 0, 0}, den[3] = {0, 0, 0};
+    for (int i = 0; i < 4; i++) {
+        const rt_sample *p = k[i];
+        const uint8_t *a = p->alt, *b = p->hits[1].contrib;
+        if (p->alt_known != 2)
+            return 0;
+        const uint32_t px = ss_pixel(&p->color);
+        for (int ch = 0; ch < 3; ch++) {
+            num[ch] += (int32_t)(px >> (16 - 8 * ch) & 255) - b[ch];
+            den[ch] += 2 * a[ch];
+        }
+        ab[0][i] = v3(r_from_q16(a[0] * 257), r_from_q16(a[1] * 257), r_from_q16(a[2] * 257));
+        ab[1][i] = v3(r_from_q16(b[0] * 257), r_from_q16(b[1] * 257), r_from_q16(b[2] * 257));
+        ka[i] = &ab[0][i];
+        kb[i] = &ab[1][i];
+    }
+    for (int ch = 0; ch < 3; ch++) { /* d (t A + B) = n 2 A + d B with t = n / d */
+        const int32_t d = den[ch] > 0 ? den[ch] : 1;
+        int32_t n = num[ch] > 0 ? num[ch] : 0, lo = 1 << 30, hi = -lo;
+        n = n < d ? n : d;
+        for (int i = 0; i < 4; i++) {
+            const int32_t v = 2 * n * k[i]->alt[ch] + d * k[i]->hits[1].contrib[ch];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        if (hi - lo > c->thr8 * d)
+            return 0;
+    }
+    /* A / 2 aside and B into the frame, as ss_fill interpolates colours, as bytes; each pixel
+     * then gets b x A + B from them */
+    const int id = sm->hits[0].object, cols = w + (own & 1), rows = h + (own >> 1 & 1),
+              cs = RT_GRID_MAX + 1;
+    const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
+    const rt_params *p = c->params;
+    const real tmax = r_muli(R_SCENE_MAX, 2);
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
+    uint32_t half_a[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    ss_fill(half_a, cs, w, h, cols, rows, ka);
+    ss_fill(dst, c->stride, w, h, cols, rows, kb);
+    for (int j = 0; j < rows; j++, dst += c->stride)
+        for (int i = 0; i < cols; i++) {
+            const rt_sample *pt = sm + j * c->lstride + i;
+            vec3 at;
+            real t;
+            if (pt->nhits) { /* a corner, or a point a neighbour traced */
+                dst[i] = ss_pixel(&pt->color);
+                continue;
+            }
+            c->stats->noise_pixels++;
+            if (!ss_hit_at(c, id, x0 + i, y0 + j, &at, &t))
+                return 0; /* a miss, by rounding */
+            /* the texture as trace_ray finds it: its octaves, and with the footprint the view's
+             * pixel times the distance, capped as trace_ray caps a path */
+            const real fp = p->footprint ? r_mul(c->view->pixel, t < tmax ? t : tmax) : 0;
+            uint8_t cell;
+            const rt_color b = rt_texture_color(m, at, p->octaves, fp, c->stats, &cell);
+            const uint32_t bq[3] = {(uint32_t)r_unit_to_q16(b.x), (uint32_t)r_unit_to_q16(b.y),
+                                    (uint32_t)r_unit_to_q16(b.z)};
+            uint32_t px = 0;
+            for (int ch = 0, sh = 16; ch < 3; ch++, sh -= 8) {
+                /* b (Q16.16) x A (Q15: 2 byte / 255 as byte x 257) + B (Q16.16) */
+                const int32_t v =
+                    (int32_t)((bq[ch] * ((half_a[j * cs + i] >> sh & 255) * 257) + 0x4000u) >> 15) +
+                    (int32_t)(dst[i] >> sh & 255) * 257;
+                px |= (uint32_t)SS_V(v < 65536 ? v : 65536) >> 16 << sh;
+            }
+            dst[i] = px;
+        }
+    return 1;
+}
+
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
  * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
  * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
@@ -573,6 +675,11 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         if (why != RT_SPLIT_NONE) {
             if (why == RT_SPLIT_OBJECT && sm->cell && ss_cells(c, sm, x0, y0, w, h, own)) {
                 st->texture_squares++; /* filled by cell instead */
+                return;
+            }
+            if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) && why == RT_SPLIT_CONTRIB &&
+                sm->alt_known == 2 && ss_noise(c, sm, k, x0, y0, w, h, own)) {
+                st->noise_squares++; /* filled with each pixel's texture instead */
                 return;
             }
             st->split[li]++;

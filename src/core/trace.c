@@ -84,9 +84,13 @@ typedef struct trace_hit {
  * rounding), whatever the highlights and the secondary rays add. That goes into the sample's
  * colour, with alt_known 1, until trace_point has the colour itself (trace_alt_end). E is within
  * [0, 65] and |b' - b| <= 1 (docs/numerics.md, Colours): the products and sums are in range
- * (the unchecked forms, *_in). Out of line: off the usual path. */
+ * (the unchecked forms, *_in). With `noise` (a noise texture, b its colour at the hit): the
+ * colour is b x E + B, and for interpolating E and B apart (ss_noise) the sample keeps E in
+ * rt_sample.alt, as the bytes of E / 2 (units of 2/255; nothing is kept for an E above 2), and
+ * (0 - b) x E in its colour, alt_known 2: trace_alt_end then gives B. Out of line: off the usual
+ * path. */
 static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hit *h,
-                                                    unsigned lights)
+                                                    unsigned lights, int noise)
 {
     const rt_scene *s = c->scene;
     const rt_material *m = h->m;
@@ -94,21 +98,31 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
     for (int l = 0; lights; l++, lights >>= 2)
         if (lights & 3)
             e = c3_madd_p(e, s->lights[l].color, h->ndl[l]);
-    const rt_color b2 = rt_cell_tone(c->sample->cell) ? m->diffuse : m->tex.color2;
     rt_sample *sm = c->sample;
+    rt_color b2 = rt_cell_tone(sm->cell) ? m->diffuse : m->tex.color2;
+    if (noise) {
+        if (e.x > R(2.0) || e.y > R(2.0) || e.z > R(2.0))
+            return;
+        sm->alt[0] = r_to_byte(r_shr(e.x, 1));
+        sm->alt[1] = r_to_byte(r_shr(e.y, 1));
+        sm->alt[2] = r_to_byte(r_shr(e.z, 1));
+        b2 = v3(0, 0, 0);
+    }
     sm->color = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
                    r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
                    r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
-    sm->alt_known = 1;
+    sm->alt_known = (uint8_t)(1 + noise);
 }
 
-/* The sample's other tone (rt_sample.alt) from its colour col and what the other tone adds,
- * which trace_alt_mid left in its colour (within [-65, 65]: the sum is in range). */
-static __attribute__((cold, noinline)) void trace_alt_end(rt_sample *sm, rt_color col)
+/* The sample's other tone (rt_sample.alt; on a noise texture its B, rt_sample.hits[1]) into `to`
+ * from its colour col and what trace_alt_mid left in its colour (within [-65, 65]: the sum is in
+ * range), as the bytes of a pixel. */
+static __attribute__((cold, noinline)) void trace_alt_end(uint8_t *to, const rt_sample *sm,
+                                                          rt_color col)
 {
-    sm->alt[0] = r_to_byte(r_add_in(col.x, sm->color.x));
-    sm->alt[1] = r_to_byte(r_add_in(col.y, sm->color.y));
-    sm->alt[2] = r_to_byte(r_add_in(col.z, sm->color.z));
+    to[0] = r_to_byte(r_add_in(col.x, sm->color.x));
+    to[1] = r_to_byte(r_add_in(col.y, sm->color.y));
+    to[2] = r_to_byte(r_add_in(col.z, sm->color.z));
 }
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
@@ -298,8 +312,12 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
     if (level == 0) {
         c->sample->lights = (uint8_t)lights;
-        if (c->alt && cell && (s->plane_set >> id & 1))
-            trace_alt_mid(c, &h, lights); /* a plane with a two-tone checker */
+        if (c->alt && m->tex.active) {
+            if (cell && (s->plane_set >> id & 1))
+                trace_alt_mid(c, &h, lights, 0); /* a plane with a two-tone checker */
+            else if (rt_scene_has(s, RT_FX_NOISE) && m->tex.kind != RT_TEX_CHECKER)
+                trace_alt_mid(c, &h, lights, 1); /* a noise texture */
+        }
     }
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
     trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
@@ -354,8 +372,14 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     stats->rays_primary++;
     int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     rt_color col = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
-    if (out->alt_known) /* the primary hit: a plane with a two-tone checker */
-        trace_alt_end(out, col);
+    if (out->alt_known) {
+        if (out->alt_known == 1) /* the primary hit: a plane with a two-tone checker */
+            trace_alt_end(out->alt, out, col);
+        else if (out->nhits == 1) /* a noise texture, no secondary ray: B */
+            trace_alt_end(out->hits[1].contrib, out, col);
+        else
+            out->alt_known = 0;
+    }
     out->color = col;
 }
 
