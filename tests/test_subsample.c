@@ -405,8 +405,8 @@ static void one_sphere_scene(rt_scene *s, double x, double y, double r)
 
 /* Renders the scene in full (every sample kept) and adaptive mode. For every pair of
  * neighbouring pixels whose full samples differ for `reason` (as the adaptive render's own
- * threshold sees them: a shadow or reflection too faint to show is no edge), checks that the adaptive render
- * traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
+ * threshold sees them: a shadow or reflection too faint to show is no edge), checks that the
+ * adaptive render traced both pixels (the squares along the edge were split down to 1x1) and shows exactly
  * the full render's colours there. Returns the number of such pairs. */
 static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
 {

@@ -1,4 +1,4 @@
-/* probe.c: probe mode: a point that splitting a square adds is probed (nearest hits, light states, no shading) and shaded in full only where its neighbours cannot give its colour. */
+/* probe.c: probe mode: a point that splitting a square adds is probed (its primary hit and checker cell, no shading) and shaded in full only where its neighbours cannot give its colour. */
 #include "rt.h"
 
 /* Do the samples k[i] with bit i set in `set` (all of one record) have contributions within

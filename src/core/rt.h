@@ -23,6 +23,8 @@
 #define RT_NO_OBJECT 0xFF
 /* A light's state becomes 2 (highlight) when its specular term exceeds this. */
 #define RT_HIGHLIGHT_MIN R(0.125)
+/* Noise pixels: the largest lighting factor A a sample keeps (as A / 2 in a byte). */
+#define RT_NOISE_A_MAX R(2.0)
 
 typedef vec3 rt_color;
 
@@ -225,14 +227,15 @@ typedef struct rt_sample {
         uint32_t head; /* the four bytes above as one word: rt_corners_differ's first compare */
     };
     rt_hit_rec hits[RT_SAMPLE_MAX_HITS]; /* the first nodes, up to RT_SAMPLE_MAX_HITS */
-    /* alt_known 1 (adaptive mode, a primary hit on a two-tone checker seen from the prepared
-     * eye): alt is the colour the point would have in a cell of the other colour (the same
-     * lights, highlights and secondary rays, the other diffuse colour) as the bytes of a pixel
-     * (r_to_byte of each channel: red, green, blue). alt_known 2 (adaptive mode, a primary hit
-     * on a noise texture seen from the prepared eye, no secondary ray: nhits 1): the colour is
+    /* alt_known 1 (adaptive and probe mode, a primary hit on a two-tone checker seen from the
+     * prepared eye): alt is the colour the point would have in a cell of the other colour (the
+     * same lights, highlights and secondary rays, the other diffuse colour) as the bytes of a
+     * pixel (r_to_byte of each channel: red, green, blue). alt_known 2 (adaptive and probe
+     * mode, a primary hit on a noise texture seen from the prepared eye, no secondary ray:
+     * nhits 1): the colour is
      * b x A + B, b the texture's colour at the hit, A the lighting that multiplies it (ambient
      * and Lambert terms) and B the rest (highlights); alt holds A / 2 as bytes (r_to_byte,
-     * A <= 2) and hits[1].contrib, the node past the tree, B as bytes (clamped to [0, 1]: a B
+     * A <= RT_NOISE_A_MAX) and hits[1].contrib, the node past the tree, B as bytes (clamped to [0, 1]: a B
      * of 1 or more gives a pixel of 1 whatever b x A adds). Else 0. */
     uint8_t alt[3];
     uint8_t alt_known;
@@ -513,8 +516,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
  * texture, no texture beyond the primary hit, no highlight); and the matching samples'
  * contributions agree within thr8 (1/255 steps). *out then gets the first matching sample's
  * record, the colour interpolated from the matching samples alone (along x within each row of
- * the context, then between the rows; a row with one matching sample gives its colour), their
- * other tone's colour likewise where all of them have one (rt_sample.alt), and flags
+ * the context, then between the rows; a row with one matching sample gives its colour), the
+ * first matching sample's other tone's colour as its own (rt_sample.alt, alt_known), and flags
  * RT_SAMPLE_PROBED. Returns 0 when the probed point must be shaded in full (*out untouched):
  * *pri then holds its primary ray and hit (rt_trace_pixel_from). Counts probes in
  * st->probes. */

@@ -570,8 +570,9 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
  * does not change, t A + B for one texture colour t (the corners' mean, sum (C - B) / sum A
  * clamped to [0, 1]; in bytes, multiplied out by sum A), the square is not split for the
  * texture's colour: each pixel gets b x A + B, A and B interpolated bilinearly from the corners'
- * (ss_fill, as bytes: A / 2 and B are within [0, 1]) and b the texture at the pixel's own hit (ss_hit_at: a ray and the object's test, no shading; the
- * tracer's octave rule). Returns 1 when it filled the pixels the square owns (as ss_fill:
+ * (ss_fill, as bytes: A / 2 and B are within [0, 1]: A <= RT_NOISE_A_MAX) and b the texture at
+ * the pixel's own hit (ss_hit_at: a ray and the object's test, no shading; the tracer's octave
+ * rule). Returns 1 when it filled the pixels the square owns (as ss_fill:
  * `cols` x `rows`; points traced before keep their colour), 0 to split (also when a pixel's ray
  * misses the object: the split writes every pixel again). In integers: A in Q15 (byte x 257,
  * below 2), b and B in Q16.16, b x A below 2^32; the criterion's terms below 2^20. 1.2 kB of

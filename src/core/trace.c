@@ -21,8 +21,9 @@ typedef struct trace_ctx {
      * the pixel's own primary ray, whose tests mirror_cand bounds (rt_view_mirror_candidates). */
     int mirror;
     uint32_t mirror_cand;
-    /* Adaptive mode: 1 gives a primary hit on a plane with a two-tone checker its other tone's
-     * colour (rt_sample.alt, trace_alt_mid) */
+    /* Adaptive and probe mode: 1 gives a primary hit on a plane with a two-tone checker its
+     * other tone's colour, and one on a noise texture its lighting factors (rt_sample.alt,
+     * alt_known 1 or 2: trace_alt_mid) */
     int alt;
 } trace_ctx;
 
@@ -101,7 +102,7 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
     rt_sample *sm = c->sample;
     rt_color b2 = rt_cell_tone(sm->cell) ? m->diffuse : m->tex.color2;
     if (noise) {
-        if (e.x > R(2.0) || e.y > R(2.0) || e.z > R(2.0))
+        if (e.x > RT_NOISE_A_MAX || e.y > RT_NOISE_A_MAX || e.z > RT_NOISE_A_MAX)
             return;
         sm->alt[0] = r_to_byte(r_shr(e.x, 1));
         sm->alt[1] = r_to_byte(r_shr(e.y, 1));
