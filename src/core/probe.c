@@ -155,6 +155,59 @@ static int probe_primary(const rt_scene *s, const rt_view *v, int x, int y, rt_s
     return id;
 }
 
+/* Does a light that sample f has unlit (state 0) light the primary hit *pri (on object pri->id,
+ * seen from the prepared eye) after all? The test trace_light makes for it (facing, n . l, one
+ * shadow ray), without the shading: a lit wedge between shadows that the context's samples do
+ * not see. */
+static int probe_lit(const rt_scene *s, const rt_view *v, rt_stats *st, const rt_primary *pri,
+                     const rt_sample *f)
+{
+    if (pri->id < 0)
+        return 0; /* the background: no surface, no light */
+    const rt_object *o = &s->objects[pri->id];
+    const vec3 p = v3_along_in(v->eye, pri->d, pri->t);
+    dir3 n = rt_shapes[o->kind].normal(o, p);
+    int inside = 0;
+    if (d3_dot(pri->d, n) > 0) {
+        n = d3_neg(n);
+        inside = 1;
+    }
+    for (int i = 0; i < s->nlights; i++) {
+        if (rt_light_state(f, i))
+            continue;
+        const rt_light *li = &s->lights[i];
+        vec3 to_light = v3_sub_in(li->pos, p);
+        if (!v3_faces(to_light, n))
+            continue;
+        real dist;
+        dir3 l = d3_norm(to_light, &dist);
+        if (d3_dot(n, l) <= 0)
+            continue;
+        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+        if (!inside && !s->forced)
+            occ &= ~((uint32_t)1 << pri->id);
+        if (!occ)
+            return 1;
+        const vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
+        real sdist = dist;
+        dir3 near_l;
+        const dir3 *sl = &l;
+        if (s->near_lights & (1u << i)) {
+            vec3 to_light_out = v3_sub_in(li->pos, p_out);
+            sdist = 0;
+            if (!v3_is_zero(to_light_out)) {
+                near_l = d3_norm(to_light_out, &sdist);
+                sl = &near_l;
+            }
+        }
+        st->rays_shadow++;
+        if (!(sdist > R_EPS_OFFSET &&
+              rt_occluded(s, st, i, occ, &p_out, sl, r_sub(sdist, R_EPS_OFFSET))))
+            return 1;
+    }
+    return 0;
+}
+
 int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y, int n,
                    const rt_sample *const k[], enum rt_split_reason why, real tx, real ty, int span,
                    rt_primary *pri, rt_sample *out)
@@ -203,7 +256,9 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
     if (!m)
         return 0; /* something new */
 
-    /* 2. The context agrees on every light: the matching sample's light states are the point's.
+    /* 2. The context agrees on every light: the matching sample's light states are the point's,
+     * once a light it has unlit is found unlit at the point too (probe_lit, below: else a lit
+     * wedge between shadows lies there, and the point is shaded).
      * Its ray tree is the matching sample's where that casts no secondary ray, or on an edge
      * whose ends have one record; elsewhere it would take a probe of its own: shaded. */
     const rt_sample *f = k[probe_first(m)];
@@ -217,7 +272,7 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
      * contributions agree. */
     int single = !(m & (m - 1));
     if ((single && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
-        (!single && !agreed && !probe_agree(n, k, m, thr8)))
+        (!single && !agreed && !probe_agree(n, k, m, thr8)) || probe_lit(s, v, st, pri, f))
         return 0;
 
     /* The record is f's, the colour interpolated from the matching samples'. f's other tone's

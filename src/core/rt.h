@@ -514,7 +514,9 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
  * ray, or the context is an edge whose ends have one record), two or more of them match, or
  * one and span <= RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise
  * texture, no texture beyond the primary hit, no highlight); and the matching samples'
- * contributions agree within thr8 (1/255 steps). *out then gets the first matching sample's
+ * contributions agree within thr8 (1/255 steps); and every light the first matching sample
+ * has unlit leaves the point unlit too (its facing test, n . l and shadow ray, counted in
+ * st->rays_shadow: a lit wedge between shadows no context sample sees). *out then gets the first matching sample's
  * record, the colour interpolated from the matching samples alone (along x within each row of
  * the context, then between the rows; a row with one matching sample gives its colour), the
  * first matching sample's other tone's colour as its own (rt_sample.alt, alt_known), and flags
