@@ -172,37 +172,10 @@ static int probe_lit(const rt_scene *s, const rt_view *v, rt_stats *st, const rt
         n = d3_neg(n);
         inside = 1;
     }
+    const vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
     for (int i = 0; i < s->nlights; i++) {
-        if (rt_light_state(f, i))
-            continue;
-        const rt_light *li = &s->lights[i];
-        vec3 to_light = v3_sub_in(li->pos, p);
-        if (!v3_faces(to_light, n))
-            continue;
-        real dist;
-        dir3 l = d3_norm(to_light, &dist);
-        if (d3_dot(n, l) <= 0)
-            continue;
-        uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-        if (!inside && !s->forced)
-            occ &= ~((uint32_t)1 << pri->id);
-        if (!occ)
-            return 1;
-        const vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
-        real sdist = dist;
-        dir3 near_l;
-        const dir3 *sl = &l;
-        if (s->near_lights & (1u << i)) {
-            vec3 to_light_out = v3_sub_in(li->pos, p_out);
-            sdist = 0;
-            if (!v3_is_zero(to_light_out)) {
-                near_l = d3_norm(to_light_out, &sdist);
-                sl = &near_l;
-            }
-        }
-        st->rays_shadow++;
-        if (!(sdist > R_EPS_OFFSET &&
-              rt_occluded(s, st, i, occ, &p_out, sl, r_sub(sdist, R_EPS_OFFSET))))
+        dir3 l;
+        if (!rt_light_state(f, i) && rt_light_reach(s, st, i, pri->id, inside, &p, &p_out, n, &l))
             return 1;
     }
     return 0;

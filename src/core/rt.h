@@ -450,6 +450,58 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t);
 int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const vec3 *org,
                 const dir3 *d, real dist);
 
+/* Does light i reach point p (normal n, facing the ray; on object id, seen from inside when
+ * `inside`; p_out: p lifted off the surface for secondary rays)? Returns n . l > 0 with the
+ * direction to the light in *l where it does, else 0: a light behind the surface or exactly on
+ * the point (no direction), or one shadow ray finding an occluder (counted in
+ * st->rays_shadow). Shared by the shading (trace_light) and probe mode's light test, so both
+ * decide light and shadow alike; p_out is read only when a shadow ray is cast. */
+static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene *s, rt_stats *st,
+                                                                 int i, int id, int inside,
+                                                                 const vec3 *p, const vec3 *p_out,
+                                                                 dir3 n, dir3 *l)
+{
+    const rt_light *li = &s->lights[i];
+    vec3 to_light = v3_sub_in(li->pos, *p);
+    if (!v3_faces(to_light, n))
+        return 0;
+    real dist;
+    *l = d3_norm(to_light, &dist);
+    unit ndl = d3_dot(n, *l);
+    if (ndl <= 0)
+        return 0; /* the light is not in front of the surface */
+    /* A convex surface never shadows its own lit side; seen from inside (glass) it
+     * can. Lights nothing can occlude cast no shadow ray at all. */
+    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+    if (!inside && !s->forced)
+        occ &= ~((uint32_t)1 << id);
+    if (occ) {
+        /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
+         * light, behind a surface that passes closer to the light than that (a light
+         * just above a floor seen from the underside of a ball: a false shadow). For
+         * such lights it is aimed from p_out itself and ends at the light. */
+        real sdist = dist;
+        dir3 near_l;
+        const dir3 *sl = l;
+        if (s->near_lights & (1u << i)) {
+            vec3 to_light_out = v3_sub_in(li->pos, *p_out);
+            sdist = 0;
+            if (!v3_is_zero(to_light_out)) {
+                near_l = d3_norm(to_light_out, &sdist);
+                sl = &near_l;
+            }
+        }
+        /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
+         * off the surface: a surface through the light itself (a light in a corner of
+         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+        st->rays_shadow++;
+        if (sdist > R_EPS_OFFSET &&
+            rt_occluded(s, st, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            return 0;
+    }
+    return ndl;
+}
+
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
  * aligned for rt_sample (probe mode the same). If `traced` is not NULL it gets one byte per pixel

@@ -135,47 +135,13 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_
      * behind the surface or shadowed and need only p and n. */
     const rt_scene *s = c->scene;
     const rt_light *li = &s->lights[i];
-    const dir3 n = h->n;
     /* A light behind the surface, or exactly on the point (no direction: it lights the
      * point at a grazing angle, i.e. not at all), leaves l = 0, so n . l = 0, without the
      * cost of a normalisation. */
-    vec3 to_light = v3_sub_in(li->pos, h->p);
-    if (!v3_faces(to_light, n))
+    dir3 l;
+    const unit ndl = rt_light_reach(s, c->stats, i, h->id, h->inside, &h->p, &h->p_out, h->n, &l);
+    if (!ndl)
         return 0;
-    real dist;
-    dir3 l = d3_norm(to_light, &dist);
-    unit ndl = d3_dot(n, l);
-    if (ndl <= 0)
-        return 0; /* the light is not in front of the surface */
-    /* A convex surface never shadows its own lit side; seen from inside (glass) it
-     * can. Lights nothing can occlude cast no shadow ray at all. */
-    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-    if (!h->inside && !s->forced)
-        occ &= ~((uint32_t)1 << h->id);
-    if (occ) {
-        /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
-         * light, behind a surface that passes closer to the light than that (a light
-         * just above a floor seen from the underside of a ball: a false shadow). For
-         * such lights it is aimed from p_out itself and ends at the light. */
-        real sdist = dist;
-        dir3 near_l;
-        const dir3 *sl = &l;
-        if (s->near_lights & (1u << i)) {
-            vec3 to_light_out = v3_sub_in(li->pos, h->p_out);
-            sdist = 0;
-            if (!v3_is_zero(to_light_out)) {
-                near_l = d3_norm(to_light_out, &sdist);
-                sl = &near_l;
-            }
-        }
-        /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
-         * off the surface: a surface through the light itself (a light in a corner of
-         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
-        c->stats->rays_shadow++;
-        if (sdist > R_EPS_OFFSET &&
-            rt_occluded(s, c->stats, i, occ, &h->p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
-            return 0;
-    }
     const rt_material *m = h->m;
     rt_color acc = c3_madd_p(*col, c3_mul_p(li->color, h->base), u_to_real(ndl)); /* Lambert */
     h->ndl[i] = u_to_real(ndl); /* for a checker's other tone (trace_alt_mid) */
