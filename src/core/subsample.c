@@ -177,8 +177,17 @@ static int32_t ss_mul(int32_t d, int32_t t)
     return d < 0 ? -q : q;
 }
 
-/* ss_mul(d, 1/2): d / 2 rounded half away from zero ((|d| 2^15 + 2^15) >> 16 = (|d| + 1) >> 1). */
-static int32_t ss_half(int32_t d) { return d < 0 ? -((1 - d) >> 1) : (d + 1) >> 1; }
+/* ss_mul(d, 2^-k) for 1 <= k <= 4 (t = 2^(16 - k), i / n for n = 2^k): |d| t + 2^15 over 2^16
+ * is (|d| + 2^(k - 1)) / 2^k, so for d >= 0 it is (d + 2^(k - 1)) >> k, and for d < 0 its
+ * negation -floor((|d| + 2^(k - 1)) / 2^k) = ceil((d - 2^(k - 1)) / 2^k) is
+ * floor((d + 2^(k - 1) - 1) / 2^k): one sum, the sign's -1 (d >> 31) and an arithmetic shift. */
+static inline int32_t ss_shr_round(int32_t d, int k)
+{
+    return (d + (1 << (k - 1)) + (d >> 31)) >> k;
+}
+
+/* ss_mul(d, 1/2): d / 2 rounded half away from zero. */
+static int32_t ss_half(int32_t d) { return ss_shr_round(d, 1); }
 
 /* The byte of a channel v (Q16.16) is r_to_byte's: v clamped to [0, 65536], then
  * (v 255 + 2^15) >> 16. The fill keeps each channel as V = v 255 + 2^15
@@ -252,6 +261,43 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                 dst[i] = px;
         return;
     }
+#ifndef __OPTIMIZE_SIZE__
+    if (w >= 2 && h >= 2 && !(w & (w - 1)) && !(h & (h - 1))) {
+        /* Sides of 2, 4, 8 or 16 (every square but those that end the frame): the weights are
+         * j / h = j 2^(16 - kh) exactly, so row j's ends q + ss_mul(d, j / h) (d the side's
+         * difference) are q + ss_shr_round(d j, kh) = (q 2^kh + 2^(kh - 1) + [d < 0 ? -1 : 0]
+         * + j d) >> kh: one sum a row, which gives q itself at j = 0 and the far corner's at
+         * j = h. The step along a row is ss_shr_round(r - l, kw). The same values as below, in
+         * a third of the instructions a row (not in builds for size, -Os: the intro player). */
+        const int kh = __builtin_ctz((unsigned)h), kw = __builtin_ctz((unsigned)w);
+        int32_t acc[6], dq[6];
+        for (int n = 0; n < 6; n++) {
+            dq[n] = q[n + 6] - q[n];
+            acc[n] = q[n] * h + (1 << (kh - 1)) + (dq[n] >> 31);
+        }
+        const int right = cols > w, inner = cols < w ? cols : w;
+        for (int j = 0; j < rows; j++, dst += stride) {
+            const int32_t l0 = acc[0] >> kh, l1 = acc[1] >> kh, l2 = acc[2] >> kh;
+            const int32_t r0 = acc[3] >> kh, r1 = acc[4] >> kh, r2 = acc[5] >> kh;
+            for (int n = 0; n < 6; n++)
+                acc[n] += dq[n];
+            int32_t v0 = SS_V(l0), v1 = SS_V(l1), v2 = SS_V(l2);
+            const int32_t s0 = ss_shr_round(r0 - l0, kw) * 255,
+                          s1 = ss_shr_round(r1 - l1, kw) * 255,
+                          s2 = ss_shr_round(r2 - l2, kw) * 255;
+            dst[0] = ss_pack(v0, v1, v2);
+            for (int i = 1; i < inner; i++) {
+                v0 += s0;
+                v1 += s1;
+                v2 += s2;
+                dst[i] = ss_pack(v0, v1, v2);
+            }
+            if (right)
+                dst[w] = ss_pack(SS_V(r0), SS_V(r1), SS_V(r2));
+        }
+        return;
+    }
+#endif
     const uint16_t *wy = ss_wrow(h); /* read at 0 < j < h */
     int32_t sx = ss_wrow(w)[1];      /* w <= 1: ss_wq[1], 0 (unused) */
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
