@@ -260,11 +260,20 @@ static inline real r_sqrt(real a)
 }
 
 /* x reduced modulo 2 pi into (-pi, pi]. 2 pi is 411774.83 LSB in Q16.16, so the reduction is
- * done in Q.32 where 2 pi is exact to 2^-33: no drift for large angles. */
+ * done in Q.32 where 2 pi is exact to 2^-33: no drift for large angles. The remainder is the
+ * 64-bit % operator's, (a 2^16) % 2 pi, without its division (a library call on 32-bit ARM):
+ * the quotient of |a| 2^16 is |a| 2^50 / (2 pi) / 2^50, and |a| floor(2^66 / (2 pi)) / 2^50
+ * falls short of it by less than 2^31 / 2^50, so its floor is the quotient or one less (one
+ * correction); the remainder takes a's sign, as %'s does (checked for every 32-bit a). */
 static inline real r_reduce_angle(real a)
 {
     const int64_t two_pi = 26986075409LL, pi = 13493037705LL; /* Q.32 */
-    int64_t v = ((int64_t)a * 65536) % two_pi;
+    const uint32_t m = a < 0 ? 0u - (uint32_t)a : (uint32_t)a;
+    const uint32_t q = (uint32_t)(((uint64_t)m * 2734261102u) >> 50); /* 2^66 / (2 pi), floored */
+    uint64_t r = ((uint64_t)m << 16) - (uint64_t)q * (uint64_t)two_pi;
+    if (r >= (uint64_t)two_pi)
+        r -= (uint64_t)two_pi;
+    int64_t v = a < 0 ? -(int64_t)r : (int64_t)r;
     if (v > pi)
         v -= two_pi;
     else if (v <= -pi)

@@ -1067,6 +1067,31 @@ static void test_fixed_internals(void **state)
     }
     fx_events_reset();
 
+    /* r_reduce_angle's remainder, formed without a 64-bit division, is the % operator's: every
+     * 4099th 32-bit angle, the ends of the range, and the angles next to each multiple of 2 pi
+     * up to 5214 turns (where the quotient's estimate falls one short) */
+    for (int64_t k = 0; k < 1048576 + 2 * 5215 * 8; k++) {
+        int64_t a64 = k < 1048576 ? INT32_MIN + k * 4099 : 0;
+        if (k >= 1048576) {
+            int64_t j = k - 1048576, turn = j / 16;
+            a64 = (turn * 26986075409LL >> 16) + j % 8 - 4;
+            a64 = j % 16 >= 8 ? -a64 : a64;
+        }
+        if (a64 > INT32_MAX || a64 < INT32_MIN)
+            a64 = a64 < 0 ? INT32_MIN : INT32_MAX;
+        const real a = (real)a64;
+        int64_t v = ((int64_t)a * 65536) % 26986075409LL;
+        if (v > 13493037705LL)
+            v -= 26986075409LL;
+        else if (v <= -13493037705LL)
+            v += 26986075409LL;
+        if (r_reduce_angle(a) != (real)fx_round_shift(v, 16)) {
+            n_failed++;
+            print_error("r_reduce_angle(%d) = %d, the %% operator's remainder gives %d\n", (int)a,
+                        (int)r_reduce_angle(a), (int)fx_round_shift(v, 16));
+        }
+    }
+
     static const uint64_t ns[] = {0,
                                   1,
                                   2,
