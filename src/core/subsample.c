@@ -266,21 +266,21 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         /* Sides of 2, 4, 8 or 16 (every square but those that end the frame): the weights are
          * j / h = j 2^(16 - kh) exactly, so row j's ends q + ss_mul(d, j / h) (d the side's
          * difference) are q + ss_shr_round(d j, kh) = (q 2^kh + 2^(kh - 1) + [d < 0 ? -1 : 0]
-         * + j d) >> kh: one sum a row, which gives q itself at j = 0 and the far corner's at
-         * j = h. The step along a row is ss_shr_round(r - l, kw). The same values as below, in
+         * + j d) >> kh: one multiply-accumulate a row, which gives q itself at j = 0 and the far
+         * corner's at j = h. The step along a row is ss_shr_round(r - l, kw). The same values as below, in
          * a third of the instructions a row (not in builds for size, -Os: the intro player). */
         const int kh = __builtin_ctz((unsigned)h), kw = __builtin_ctz((unsigned)w);
-        int32_t acc[6], dq[6];
+        int32_t e[12]; /* for each end n: e[2n] + j e[2n + 1] is its sum at row j */
         for (int n = 0; n < 6; n++) {
-            dq[n] = q[n + 6] - q[n];
-            acc[n] = q[n] * h + (1 << (kh - 1)) + (dq[n] >> 31);
+            e[2 * n + 1] = q[n + 6] - q[n];
+            e[2 * n] = q[n] * h + (1 << (kh - 1)) + (e[2 * n + 1] >> 31);
         }
         const int right = cols > w, inner = cols < w ? cols : w;
         for (int j = 0; j < rows; j++, dst += stride) {
-            const int32_t l0 = acc[0] >> kh, l1 = acc[1] >> kh, l2 = acc[2] >> kh;
-            const int32_t r0 = acc[3] >> kh, r1 = acc[4] >> kh, r2 = acc[5] >> kh;
-            for (int n = 0; n < 6; n++)
-                acc[n] += dq[n];
+            const int32_t l0 = (e[0] + j * e[1]) >> kh, l1 = (e[2] + j * e[3]) >> kh,
+                          l2 = (e[4] + j * e[5]) >> kh;
+            const int32_t r0 = (e[6] + j * e[7]) >> kh, r1 = (e[8] + j * e[9]) >> kh,
+                          r2 = (e[10] + j * e[11]) >> kh;
             int32_t v0 = SS_V(l0), v1 = SS_V(l1), v2 = SS_V(l2);
             const int32_t s0 = ss_shr_round(r0 - l0, kw) * 255,
                           s1 = ss_shr_round(r1 - l1, kw) * 255,
