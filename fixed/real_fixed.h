@@ -355,7 +355,7 @@ static inline real r_mul_u(real a, unit u)
 #if FX_COUNT_EVENTS
 static inline real r_mul_u_in(real a, unit u) { return r_mul_u(a, u); }
 #else
-static inline real r_mul_u_in(real a, unit u)
+static inline __attribute__((always_inline)) real r_mul_u_in(real a, unit u)
 {
     if (FX_POW2_BELOW_UNIT(a))
         return fx_round_shift32(u, FX_UF - __builtin_ctz((uint32_t)a));
