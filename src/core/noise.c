@@ -11,7 +11,11 @@
 /* NOISE_OPAQUE(x): the value of x is unknown to the optimiser from here on (no instruction).
  * Speed only: GCC for ARM then keeps a mask as a mask, so that the shift after it goes into
  * the load's address (an and and a shifted-register load, not a shift, an and and a load). */
+#if defined(__arm__)
 #define NOISE_OPAQUE(x) __asm__("" : "+r"(x))
+#else
+#define NOISE_OPAQUE(x) (void)(x) /* x86-64: the barrier costs more than it saves */
+#endif
 
 /* The hash is a product per axis, the three XORed, then mixed: the per-axis products of a
  * cell's two corners along each axis are shared by its eight corners. */
