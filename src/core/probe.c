@@ -48,13 +48,16 @@ static __attribute__((noinline)) rt_color probe_lerp(const rt_color *a, const rt
 
 /* The colour at fraction t from *a to *b, from those of them in `m` alone (bit 0: a, bit 1: b;
  * the other is not read). */
-static inline rt_color probe_mix(const rt_color *a, const rt_color *b, unsigned m, real t)
+static inline __attribute__((always_inline)) rt_color probe_mix(const rt_color *a,
+                                                                const rt_color *b, unsigned m,
+                                                                real t)
 {
     return m == 1 ? *a : m == 2 ? *b : probe_lerp(a, b, t);
 }
 
 /* Do a and b have the same ray tree below the primary hit (count, objects and levels)? */
-static int probe_same_tree(const rt_sample *a, const rt_sample *b)
+static inline __attribute__((always_inline)) int probe_same_tree(const rt_sample *a,
+                                                                 const rt_sample *b)
 {
     if (a->nhits != b->nhits)
         return 0;
