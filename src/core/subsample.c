@@ -266,9 +266,10 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         /* Sides of 2, 4, 8 or 16 (every square but those that end the frame): the weights are
          * j / h = j 2^(16 - kh) exactly, so row j's ends q + ss_mul(d, j / h) (d the side's
          * difference) are q + ss_shr_round(d j, kh) = (q 2^kh + 2^(kh - 1) + [d < 0 ? -1 : 0]
-         * + j d) >> kh: one multiply-accumulate a row, which gives q itself at j = 0 and the far
-         * corner's at j = h. The step along a row is ss_shr_round(r - l, kw). The same values as below, in
-         * a third of the instructions a row (not in builds for size, -Os: the intro player). */
+         * + j d) >> kh: one multiply-accumulate each, which gives q itself at j = 0 and the far
+         * corner's at j = h. The step along a row is ss_shr_round(r - l, kw). The same values
+         * as the rows below, in fewer instructions (not in builds for size, -Os: the intro
+         * player keeps the rows below alone). */
         const int kh = __builtin_ctz((unsigned)h), kw = __builtin_ctz((unsigned)w);
         int32_t e[12]; /* for each end n: e[2n] + j e[2n + 1] is its sum at row j */
         for (int n = 0; n < 6; n++) {
