@@ -352,6 +352,10 @@ typedef struct rt_shape_ops {
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 
+/* rt_shapes[RT_SPHERE].normal with the point passed in place: the tracer's direct call (no
+ * table, no copy of the point); a plane's normal is its rt_object.normal. */
+dir3 rt_sphere_normal(const rt_object *o, const vec3 *p);
+
 /* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
  * derives the effects the scene needs: effects, reach_depth and occluders. */
 void rt_scene_prepare(rt_scene *s);

@@ -44,10 +44,12 @@ SHAPES_INLINE int sphere_intersect(const rt_object *o, vec3 org, dir3 d, real tm
     return sphere_hit(o, l, v3_dot_d_in(l, d), d, tmax, t);
 }
 
-static dir3 sphere_normal(const rt_object *o, vec3 p)
+__attribute__((noinline)) dir3 rt_sphere_normal(const rt_object *o, const vec3 *p)
 {
-    return d3_norm_near(v3_sub_in(p, o->center), o->inv_radius); /* |p - c| is about r */
+    return d3_norm_near(v3_sub_in(*p, o->center), o->inv_radius); /* |p - c| is about r */
 }
+
+static dir3 sphere_normal(const rt_object *o, vec3 p) { return rt_sphere_normal(o, &p); }
 
 /* The plane test up to its division, given num = offset - org . normal, the origin's signed
  * distance to the plane: 1 when the ray meets the plane at t = num / den in (0, tmax), with num

@@ -9,6 +9,7 @@ typedef struct trace_ctx {
     rt_stats *stats;
     rt_sample *sample;
     real min_contrib; /* adaptive recursion control */
+    int depth;        /* recursion depth left to the primary ray: level k has depth - k */
     int octaves;      /* cap on noise octaves (rt_params.octaves) */
     real pixel;       /* a pixel's footprint per unit of ray length, 0 = footprint off */
     /* How the primary ray finds its hit: 0 rt_nearest_but, 1 rt_nearest_primary (the view's eye
@@ -165,14 +166,14 @@ static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_
     return state;
 }
 
-static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
+static rt_color trace_ray(trace_ctx *c, const vec3 *org, const dir3 *d, int level, real weight,
                           real travelled, int from);
 
-/* The reflected and refracted rays of hit h (trace_ray's, at recursion depth `depth` > 0 and
- * weight `weight`), added to col. Out of line on ARM (RT_OUT_OF_LINE): trace_ray's own frame
+/* The reflected and refracted rays of hit h (trace_ray's, at recursion level `level`, whose
+ * depth left is above 0, and weight `weight`), added to col. Out of line on ARM (RT_OUT_OF_LINE): trace_ray's own frame
  * then keeps less in registers. */
-static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h, int depth,
-                                               real weight, int level, real travelled, rt_color col)
+static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h, real weight,
+                                               int level, real travelled, rt_color col)
 {
     const rt_scene *s = c->scene;
     const rt_material *m = h->m;
@@ -190,7 +191,7 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
             if (wt >= c->min_contrib) { /* adaptive recursion control */
                 c->stats->rays_refract++;
                 vec3 p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
-                rt_color tc = trace_ray(c, p_in, rd, depth - 1, wt, level + 1, travelled, -1);
+                rt_color tc = trace_ray(c, &p_in, &rd, level + 1, wt, travelled, -1);
                 col = c3_madd_p(col, tc, m->transmit);
             }
         } else {
@@ -205,19 +206,24 @@ static RT_OUT_OF_LINE rt_color trace_secondary(trace_ctx *c, const trace_hit *h,
          * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
          * be off by more than that. Every object is tested when effects are forced.) */
         int self = !inside && !s->forced && s->objects[h->id].kind == RT_PLANE ? h->id : -1;
-        rt_color rc = trace_ray(c, h->p_out, d3_reflect_k(d, n, dk), depth - 1, wr, level + 1,
-                                travelled, self);
+        const dir3 rd = d3_reflect_k(d, n, dk);
+        rt_color rc = trace_ray(c, &h->p_out, &rd, level + 1, wr, travelled, self);
         col = c3_madd_p(col, rc, kr);
     }
     return col;
 }
 
-/* Colour seen along the ray (org, d); `weight` is this ray's share of the pixel, `travelled`
- * the length of its path from the eye to org, `from` the plane it leaves by mirroring (or -1). */
-static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight, int level,
-                          real travelled, int from)
+/* Colour seen along the ray (*org_at, *d_at) at recursion level `level` (its depth left is
+ * c->depth - level); `weight` is this ray's share of the pixel, `travelled` the length of its
+ * path from the eye to org, `from` the plane it leaves by mirroring (or -1). The ray is passed
+ * in place (fewer words to copy per call on ARM). */
+static rt_color trace_ray(trace_ctx *c, const vec3 *org_at, const dir3 *d_at, int level,
+                          real weight, real travelled, int from)
 {
     const rt_scene *s = c->scene;
+    const vec3 org = *org_at;
+    const dir3 d = *d_at;
+    const int depth = c->depth - level;
     real t;
     int id;
     if (level > 0 || !c->eye_prepared)
@@ -237,7 +243,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     /* The hit as trace_light sees it, formed in place. */
     trace_hit h;
     const vec3 p = h.p = v3_along_in(org, d, t);
-    dir3 n = rt_shapes[o->kind].normal(o, p);
+    dir3 n = o->kind == RT_PLANE ? o->normal : rt_sphere_normal(o, &p); /* rt_shapes' normal */
     int inside = 0;
     unit dn = d3_dot(d, n);
     if (dn > 0) { /* hit from behind: shade the side the ray sees */
@@ -298,7 +304,7 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
     if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) &&
         (m->reflect > 0 || (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0)) &&
         v3_within(p, R_SCENE_MAX))
-        col = trace_secondary(c, &h, depth, weight, level, travelled, col);
+        col = trace_secondary(c, &h, weight, level, travelled, col);
     return col;
 }
 
@@ -337,8 +343,8 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
         d = rt_view_ray(v, x, y);
     }
     stats->rays_primary++;
-    int depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
-    rt_color col = trace_ray(&c, v->eye, d, depth, R_ONE, 0, 0, -1);
+    c.depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
+    rt_color col = trace_ray(&c, &v->eye, &d, 0, R_ONE, 0, -1);
     if (out->alt_known) {
         if (out->alt_known == 1) /* the primary hit: a plane with a two-tone checker */
             trace_alt_end(out->alt, out, col);
