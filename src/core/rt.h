@@ -429,7 +429,10 @@ typedef struct rt_primary {
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out);
 
-/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
+/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance.
+ * tmax is at most R_T_MAX, and org a ray origin of the tracer (in the scene cube, or a hit point
+ * of a ray cast from it: docs/numerics.md), as the sphere and plane tests' unchecked
+ * arithmetic takes them (rt_nearest_but likewise). */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
 /* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one

@@ -107,12 +107,18 @@ const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
 /* The loops below call the shape tests directly rather than through rt_shapes: the compiler
  * then inlines them, which saves the indirect call and the passing of the ray per object. */
 
-/* The plane test out of line, for the loops over objects: planes are few, and the spheres'
- * loop then keeps the ray in registers. */
-static RT_OUT_OF_LINE int shapes_plane(const rt_object *o, const vec3 *org, const dir3 *d,
-                                       real tmax, real *t)
+/* The plane test of rt_nearest_but, inlined there (on ARM too: once the tracer's other changes
+ * were in, the inlined test measured 0.1% fewer instructions a frame than the out-of-line one,
+ * and a smaller image): plane_intersect's result for rt_nearest_but's rays, whose origins are
+ * in the scene as the sphere test takes them (|org| <= 23478, docs/numerics.md) and whose tmax
+ * is at most R_T_MAX. So |org . n| <= 23478 and, with |offset| <= 4096, |offset - org . n| is
+ * below 27575: the numerator is formed without the range checks (v3_dot_d_in, r_add_in, the
+ * same values), and plane_hit takes its in-range path (near). */
+static inline int shapes_plane(const rt_object *o, const vec3 *org, const dir3 *d, real tmax,
+                               real *t)
 {
-    return plane_intersect(o, *org, *d, tmax, t);
+    return plane_hit(o, r_add_in(o->offset, r_neg_in(v3_dot_d_in(*org, o->normal))), *d, tmax, 1,
+                     t);
 }
 
 int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
