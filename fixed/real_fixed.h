@@ -514,6 +514,15 @@ static inline real r_sqrt_w(wide a)
     return fx_sat(fx_isqrt64((uint64_t)a));
 }
 
+/* r_sqrt_w of a discriminant, 0 <= a < 2^62 (the sphere test's r^2 - |perp|^2, at most r^2 <=
+ * 2^54, docs/numerics.md): the root is below 2^31, in range, so the release build takes it
+ * without the sign and range tests (see r_mul_in). */
+#if FX_COUNT_EVENTS
+static inline real r_sqrt_w_in(wide a) { return r_sqrt_w(a); }
+#else
+static inline real r_sqrt_w_in(wide a) { return (real)fx_isqrt64((uint64_t)a); }
+#endif
+
 /* A sphere's quick rejection of rays, the test "c . d >= 0 or (c . d)^2 < k" for a k > 0
  * (rt_scene_prepare's scene_cull), prepared once per frame as one bound: for an integer cd < 0,
  * cd^2 < k exactly when -cd < T, T = ceil(sqrt(k)) (T >= 1), so the test is cd > -T, one 32-bit

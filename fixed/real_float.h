@@ -222,6 +222,7 @@ static inline rcull r_cull(wide k) { return k > 0 ? k : 0; }
 static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) < c; }
 
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
+static inline real r_sqrt_w_in(wide a) { return r_sqrt_w(a); }
 
 /* The sphere test's last step for a shadow segment (the fixed build forms it without the
  * square root): the near hit tca - thc if positive, else tca + thc, in (0, tmax)? */

@@ -344,7 +344,9 @@ typedef struct rt_stats {
 
 /* Per-type interface: every shape is intersected and shaded through this table. */
 typedef struct rt_shape_ops {
-    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. */
+    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. The ray
+     * starts at a ray origin of the tracer and tmax is at most 30573, the longest shadow segment
+     * (docs/numerics.md: the sphere test's unchecked arithmetic relies on both). */
     int (*intersect)(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
     /* Outward unit normal at a point p on the surface. */
     dir3 (*normal)(const rt_object *o, vec3 p);

@@ -18,17 +18,20 @@ SHAPES_INLINE int sphere_hit(const rt_object *o, vec3 l, real tca, dir3 d, real 
      * (exact in fixed, within 2^-22 relative in float) and the test after it rejects too. */
     if (tca < o->behind || (tca < 0 && w_len2(l) > o->radius2))
         return 0;
-    /* every hit lies at t >= tca - radius */
-    if (tca > r_add(tmax, o->radius))
+    /* every hit lies at t >= tca - radius; tmax is at most a shadow segment's length (30573,
+     * R_T_MAX for rays: rt_shape_ops) and radius <= 2048, so the sum is in range (below 32622),
+     * as are tca -+ thc (|tca| <= 30572, thc <= radius): the unchecked forms, the same values
+     * (docs/numerics.md, The sphere test) */
+    if (tca > r_add_in(tmax, o->radius))
         return 0;
     vec3 perp = v3_sub_in(l, d3_scale_in(d, tca));
     wide d2 = w_len2(perp);
     if (d2 > o->radius2)
         return 0;
-    real thc = r_sqrt_w(w_sub(o->radius2, d2));
-    real hit = r_sub(tca, thc);
+    real thc = r_sqrt_w_in(w_sub(o->radius2, d2));
+    real hit = r_add_in(tca, r_neg_in(thc));
     if (hit <= 0) {
-        hit = r_add(tca, thc); /* the origin is inside: take the far side */
+        hit = r_add_in(tca, thc); /* the origin is inside: take the far side */
         if (hit <= 0)
             return 0;
     }
