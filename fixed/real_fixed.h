@@ -264,7 +264,20 @@ static inline real r_sqrt(real a)
 static inline real r_reduce_angle(real a)
 {
     const int64_t two_pi = 26986075409LL, pi = 13493037705LL; /* Q.32 */
+#if FX_SOFT_DIVIDE
+    /* The same remainder without a division (the ARM926 would call the library's 64-bit one):
+     * |a| 2^16 mod 2pi with the sign of a, as C's % gives it. The quotient floor(|a| 2^16 /
+     * 2pi) is below 5216; |a| * 10430 / 2^32 (10430 = 2^48 / 2pi rounded down, 0.38 low) is
+     * it or one below, so one correction step makes the remainder exact. */
+    uint32_t ua = a < 0 ? 0u - (uint32_t)a : (uint32_t)a;
+    uint32_t q = (uint32_t)(((uint64_t)ua * 10430u) >> 32);
+    uint64_t rem = ((uint64_t)ua << 16) - (uint64_t)q * (uint64_t)two_pi;
+    if (rem >= (uint64_t)two_pi)
+        rem -= (uint64_t)two_pi;
+    int64_t v = a < 0 ? -(int64_t)rem : (int64_t)rem;
+#else
     int64_t v = ((int64_t)a * 65536) % two_pi;
+#endif
     if (v > pi)
         v -= two_pi;
     else if (v <= -pi)

@@ -1176,6 +1176,36 @@ static void test_fixed_internals(void **state)
         }
     }
 
+    /* r_reduce_angle (division-free where FX_SOFT_DIVIDE: the san-fixed-sd build) against the
+     * remainder it stands for: every turn's boundary and its neighbours (where a quotient
+     * estimate one off would show), both ends of the range, and random angles */
+    for (int k = 0; k < 2 * 5216 * 3 + 6 + 200000; k++) {
+        const int64_t two_pi = 26986075409LL, pi = 13493037705LL; /* Q.32 */
+        int64_t a;
+        if (k < 2 * 5216 * 3) {
+            int64_t turn = (k / 3) % 5216, sign = k < 5216 * 3 ? 1 : -1;
+            a = sign * ((turn * two_pi) >> 16) + k % 3 - 1;
+        } else if (k < 2 * 5216 * 3 + 6) {
+            static const int64_t ends[] = {INT32_MAX,      INT32_MAX - 1, -INT32_MAX,
+                                           -INT32_MAX + 1, INT32_MIN,     0};
+            a = ends[k - 2 * 5216 * 3];
+        } else {
+            a = (int32_t)(uint32_t)rng();
+        }
+        if (a < INT32_MIN || a > INT32_MAX)
+            continue;
+        int64_t v = (a * 65536) % two_pi;
+        if (v > pi)
+            v -= two_pi;
+        else if (v <= -pi)
+            v += two_pi;
+        real want = (real)((v + 32768) >> 16), got = r_reduce_angle((real)a);
+        if (got != want) {
+            n_failed++;
+            print_error("r_reduce_angle(%lld) = %d, want %d\n", (long long)a, (int)got, (int)want);
+        }
+    }
+
     /* fx_norm64: any 64-bit components, any scale */
     static const struct {
         int64_t x, y, z;
