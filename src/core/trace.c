@@ -288,9 +288,11 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
      * taken are in range (r_add_in, the same values as r_sub and r_add) */
     travelled = t < r_add_in(travel_max, r_neg_in(travelled)) ? r_add_in(travelled, t) : travel_max;
     /* a material whose texture is not active (none, or a checker of one colour) is its diffuse
-     * colour with no cell, as rt_texture_color would return: tested here, without the call */
+     * colour with no cell, as rt_texture_color would return: tested here, without the call; the
+     * footprint pixel x travelled is in range (a pixel's width at distance 1 is at most
+     * 2 tan 60 deg = 3.47, travelled at most travel_max = 8192: below 28426, r_mul_in) */
     rt_color base = rt_scene_has(s, RT_FX_TEXTURE) && m->tex.active
-        ? rt_texture_color(m, p, c->octaves, r_mul(c->pixel, travelled), c->stats, &cell)
+        ? rt_texture_color(m, p, c->octaves, r_mul_in(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
         c->sample->cell = cell;
