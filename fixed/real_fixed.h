@@ -857,6 +857,28 @@ static inline vec3 d3_scale_in(dir3 d, real s)
               (real)fx_round_shift((int64_t)s * d.y, FX_UF),
               (real)fx_round_shift((int64_t)s * d.z, FX_UF));
 }
+/* The sphere test's discriminant step: is |perp|^2 <= r2, perp = v3_sub_in(l, d3_scale_in(d,
+ * tca)) and r2 = w_sq(r) (r > 0, a sphere's radius2)? Where it is, *d2 gets w_len2(perp). The
+ * same answer with fewer instructions for most misses: each component is tested as it is
+ * formed, and one beyond r (|p| >= r + 1 step) already has p^2 >= (r + 1)^2 > r^2, so |perp|^2 >
+ * r2 exactly (the squares are exact integers, none negative): the rest is not formed. |p| > r
+ * as one unsigned compare, p + r > 2r (2r <= 2^28, |p| < 2^31: no wrap past it). */
+static inline int r_perp_within(vec3 l, dir3 d, real tca, real r, wide r2, wide *d2)
+{
+    const uint32_t lim = 2u * (uint32_t)r;
+    real py = l.y - (real)fx_round_shift((int64_t)tca * d.y, FX_UF);
+    if ((uint32_t)py + (uint32_t)r > lim)
+        return 0;
+    real px = l.x - (real)fx_round_shift((int64_t)tca * d.x, FX_UF);
+    if ((uint32_t)px + (uint32_t)r > lim)
+        return 0;
+    real pz = l.z - (real)fx_round_shift((int64_t)tca * d.z, FX_UF);
+    if ((uint32_t)pz + (uint32_t)r > lim)
+        return 0;
+    *d2 = w_len2(v3(px, py, pz));
+    return *d2 <= r2;
+}
+
 /* v3_dot_d_in(v3_sub_in(c, l), d) in two parts, for one ray d against many points c:
  * part = v3_dot_part(l, d) once, then v3_dot_d_from(c, d, part) per point. The same value:
  * the unrounded sums c . d - l . d and (c - l) . d are equal (in-scene c and l: each sum
