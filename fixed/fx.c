@@ -430,13 +430,28 @@ dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t
 {
     int64_t x, y, z;
 #if FX_UF == 30
-    int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
-    uint64_t big =
-        (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
-    /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit 32
-     * bits and every product is a signed 32x32-bit one (smull, smlal) */
-    int sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
-    int32_t as = (int32_t)(a >> sh), bs = (int32_t)(b >> sh);
+    /* The usual frame (step * |ia| and step * |ib| within 2^31: any frame up to 1280 pixels
+     * wide at a 90-degree field of view): both offsets fit a word, so sh below is 2 and the
+     * shifted offsets are the words' own arithmetic shifts, the same values from two 32-bit
+     * products and their overflow tests (on 32-bit cores). */
+    int32_t as, bs, a32, b32;
+    int sh = 2;
+    if (!FX_WORD64 && /* a 64-bit core forms the products below as cheaply */
+        __builtin_expect(!__builtin_mul_overflow(step, ia, &a32) &&
+                             !__builtin_mul_overflow(step, ib, &b32),
+                         1)) {
+        as = a32 >> 2;
+        bs = b32 >> 2;
+    } else {
+        int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
+        uint64_t big =
+            (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
+        /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit
+         * 32 bits and every product is a signed 32x32-bit one (smull, smlal) */
+        sh = big >> 33 ? 33 - __builtin_clzll(big) : 2;
+        as = (int32_t)(a >> sh);
+        bs = (int32_t)(b >> sh);
+    }
     if (__builtin_expect(sh == 2, 1)) { /* the usual frame: constant shifts */
         x = (int64_t)f->x * (1 << 28) + (int64_t)r->x * as + (int64_t)u->x * bs;
         y = (int64_t)f->y * (1 << 28) + (int64_t)r->y * as + (int64_t)u->y * bs;

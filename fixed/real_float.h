@@ -222,6 +222,7 @@ static inline rcull r_cull(wide k) { return k > 0 ? k : 0; }
 static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) < c; }
 
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
+static inline real r_sqrt_w_in(wide a) { return r_sqrt_w(a); }
 
 /* The sphere test's last step for a shadow segment (the fixed build forms it without the
  * square root): the near hit tca - thc if positive, else tca + thc, in (0, tmax)? */
@@ -330,6 +331,15 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static inline real v3_dot_d_in(vec3 v, dir3 d) { return v3_dot_d(v, d); }
 static inline vec3 d3_scale_in(dir3 d, real s) { return d3_scale(d, s); }
+/* The sphere test's discriminant step (the fixed build's r_perp_within): the sum of squares
+ * compared with r2 (float keeps no component shortcut: a square's rounding could tie r2). */
+static inline int r_perp_within(vec3 l, dir3 d, real tca, real r, wide r2, wide *d2)
+{
+    (void)r;
+    *d2 = w_len2(v3_sub_in(l, d3_scale_in(d, tca)));
+    return *d2 <= r2;
+}
+
 /* The split form of v3_dot_d_in(v3_sub_in(c, l), d): float keeps l and subtracts first. */
 typedef vec3 dotpart;
 static inline dotpart v3_dot_part(vec3 l, dir3 d)

@@ -344,13 +344,19 @@ typedef struct rt_stats {
 
 /* Per-type interface: every shape is intersected and shaded through this table. */
 typedef struct rt_shape_ops {
-    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. */
+    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. The ray
+     * starts at a ray origin of the tracer and tmax is at most 30573, the longest shadow segment
+     * (docs/numerics.md: the sphere test's unchecked arithmetic relies on both). */
     int (*intersect)(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
     /* Outward unit normal at a point p on the surface. */
     dir3 (*normal)(const rt_object *o, vec3 p);
 } rt_shape_ops;
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
+
+/* rt_shapes[RT_SPHERE].normal with the point passed in place: the tracer's direct call (no
+ * table, no copy of the point); a plane's normal is its rt_object.normal. */
+dir3 rt_sphere_normal(const rt_object *o, const vec3 *p);
 
 /* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
  * derives the effects the scene needs: effects, reach_depth and occluders. */
@@ -425,7 +431,10 @@ typedef struct rt_primary {
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out);
 
-/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance. */
+/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance.
+ * tmax is at most R_T_MAX, and org a ray origin of the tracer (in the scene cube, or a hit point
+ * of a ray cast from it: docs/numerics.md), as the sphere and plane tests' unchecked
+ * arithmetic takes them (rt_nearest_but likewise). */
 int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
 
 /* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one
