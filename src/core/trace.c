@@ -67,16 +67,8 @@ static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d,
 #define TRACE_FIRST(c) 0
 #endif
 
-/* What one hit point looks like to the lights (trace_light's input). */
-typedef struct trace_hit {
-    vec3 p, p_out; /* the point, and lifted R_EPS_OFFSET off the surface */
-    dir3 n, d;     /* normal facing the ray, and the ray's direction */
-    unit dn;       /* d . n (<= 0) */
-    rt_color base; /* diffuse colour at p */
-    const rt_material *m;
-    int id, inside;          /* object hit; 1 when hit from behind */
-    real ndl[RT_MAX_LIGHTS]; /* light i's n . l, set by trace_light where it lights the point */
-} trace_hit;
+/* What one hit point looks like to the lights (trace_light's input): rt_hit (rt.h). */
+typedef rt_hit trace_hit;
 
 /* Adaptive mode, a primary hit h on a two-tone checker (the sample's cell non-zero), its lights
  * added (states `lights`): shading is linear in the diffuse colour b, whose factor E is the
@@ -300,6 +292,17 @@ static rt_color trace_ray(trace_ctx *c, vec3 org, dir3 d, int depth, real weight
         v3_within(p, R_SCENE_MAX))
         col = trace_secondary(c, &h, depth, weight, level, travelled, col);
     return col;
+}
+
+__attribute__((cold)) int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i,
+                                        rt_color *term)
+{
+    trace_ctx c = {.scene = s, .stats = term ? NULL : st}; /* NULL: no shadow ray */
+    rt_color col = v3(0, 0, 0);
+    const int state = trace_light(&c, h, i, &col);
+    if (term)
+        *term = col;
+    return state;
 }
 
 /* Shared by rt_trace_pixel and rt_trace_pixel_from: inlined into each (`pri` NULL in the
