@@ -414,6 +414,10 @@ static void one_sphere_scene(rt_scene *s, double x, double y, double r)
 static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
 {
     rt_scene_prepare(s);
+    /* Shadow pixels (test_shadow_pixels) fill 2x2 and 4x4 squares on a shadow's edge instead of
+     * splitting them; with the view's eye not the prepared one they do not: the split path. */
+    if (reason == RT_SPLIT_LIGHT)
+        s->eye_at.x = r_add(s->eye_at.x, from_d(1));
     rt_view v;
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
@@ -475,7 +479,8 @@ static void test_object_edge(void **state)
     check_edge(&s, RT_SPLIT_OBJECT, 100, "object edge");
 }
 
-/* The shadow of a sphere on a matte floor (no highlight, no reflection). */
+/* The shadow of a sphere on a matte floor (no highlight, no reflection), followed by splitting
+ * (shadow pixels off: check_edge). */
 static void test_shadow_edge(void **state)
 {
     (void)state;
@@ -579,6 +584,9 @@ static void test_adaptive_reference(void **state)
     s.nlights = 2;
     s.camera = (rt_camera){vd(0.5, 2.5, 7), vd(0, 0.6, 0), vd(0, 1, 0), from_d(50)};
     rt_scene_prepare(&s);
+    /* the plain recursion: no shadow pixels (test_shadow_pixels), which a view whose eye is not
+     * the prepared one does not fill */
+    s.eye_at.x = r_add(s.eye_at.x, from_d(1));
     const int sizes[][2] = {{W, H}, {W - 1, H - 1}, {37, 29}, {17, 33}, {61, 5}, {3, 3}};
     const int grids[] = {2, 4, 8, 16};
     long pixels = 0, used = 0;
@@ -640,9 +648,11 @@ static void test_adaptive_reference(void **state)
  * that probe mode shaded no more points than adaptive mode and probed some. Returns the shaded
  * points. */
 static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_percent,
-                            const char *name)
+                            const char *name, int unprepared)
 {
     rt_scene_prepare(s);
+    if (unprepared) /* the view's eye not the prepared one: no shadow pixels */
+        s->eye_at.x = r_add(s->eye_at.x, from_d(1));
     rt_view v;
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
@@ -710,7 +720,7 @@ static void test_probe_straight_edge(void **state)
     *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
     o->axis = vd(1, 0, 0.4);
     s.camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
-    uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge");
+    uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge", 0);
     rt_stats sa = {0};
     rt_params pa = {
         .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
@@ -728,7 +738,8 @@ static void test_probe_shadow_edge(void **state)
     (void)state;
     static rt_scene s;
     shadow_scene(&s);
-    check_probe(&s, 0, 32, 100, "probe: shadow edge"); /* twice the split threshold */
+    /* split (shadow pixels off: those are test_shadow_pixels') */
+    check_probe(&s, 0, 32, 100, "probe: shadow edge", 1); /* twice the split threshold */
 }
 
 /* A sphere seen only in a mirror floor: the reflected outline is followed to the pixel where
@@ -741,7 +752,8 @@ static void test_probe_reflected_edge(void **state)
     mirror_scene(&s);
     s.lights[0].pos = vd(0, 20, 20);
     s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
-    check_probe(&s, 0, 64, 90, "probe: reflected edge"); /* what adaptive mode misses too */
+    /* (its floor shows the sphere's shadow too: split, shadow pixels off) */
+    check_probe(&s, 0, 64, 90, "probe: reflected edge", 1); /* what adaptive mode misses too */
 }
 
 /* Every frame size, multiple of the grid or not, down to a single pixel: every pixel written,
@@ -1147,6 +1159,75 @@ static void test_noise_pixels(void **state)
     assert_true(w_coarse > bound_worst || o_coarse > bound_over8);
 }
 
+/* Shadow pixels: on the shadow of a sphere on a matte floor, lit by a second light as well,
+ * adaptive mode fills the 2x2 and 4x4 squares on the shadow's edge from each corner's colour
+ * unlit and lit (its own, and the other from the light's term there) with each pixel's own light
+ * test instead of splitting them (ss_shadow). Every pixel stays within a few levels of full
+ * mode's, and so do the pixels on either side of the edge, untraced ones included: a pixel on the
+ * wrong side, or a wrong term, is off by the light's contrast, some 100 levels. Fewer points are
+ * traced than with the edge split (a view whose eye is not the prepared one), and probe mode
+ * fills them too. */
+static void test_shadow_pixels(void **state)
+{
+    (void)state;
+    static rt_scene s, split;
+    shadow_scene(&s);
+    s.lights[1] = (rt_light){vd(6, 8, 6), vd(0.3, 0.3, 0.35)};
+    s.nlights = 2;
+    rt_scene_prepare(&s);
+    split = s;
+    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL};
+    rt_params pa = {
+        .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
+    rt_stats st = {0}, sa = {0}, ss = {0}, sp = {0};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            rt_trace_pixel(&s, &v, &pf, x, y, &st, &full[y][x]);
+    rt_render(&s, &v, &pf, fullpx, W, &st, NULL, NULL);
+    rt_render(&split, &v, &pa, adpx, W, &ss, work, NULL);
+    rt_render(&s, &v, &pa, adpx, W, &sa, work, traced);
+    const int bound = 6;
+    int over8, worst = frame_diff(adpx, fullpx, &over8), pairs = 0, untraced = 0, wrong = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x + 1 < W; x++) {
+            /* neighbours that differ in light 0 alone, lit and unlit */
+            const rt_sample *a = &full[y][x], *b = &full[y][x + 1];
+            if (a->hits[0].object != b->hits[0].object || (a->lights ^ b->lights) != 1)
+                continue;
+            pairs++;
+            for (int q = 0; q < 2; q++) {
+                const int p = y * W + x + q;
+                untraced += !traced[p];
+                int m = 0;
+                for (int ch = 0; ch < 24; ch += 8) {
+                    const int d = abs((int)(adpx[p] >> ch & 255) - (int)(fullpx[p] >> ch & 255));
+                    m = d > m ? d : m;
+                }
+                wrong += m > bound;
+            }
+        }
+    print_message("shadow pixels: %lu points traced (%lu with the edge split), %lu squares filled "
+                  "per pixel, %lu pixels tested; against full mode: worst %d levels, %d over 8; "
+                  "%d edge pairs, %d of their pixels untraced, %d off by more than %d\n",
+                  (unsigned long)sa.rays_primary, (unsigned long)ss.rays_primary,
+                  (unsigned long)sa.shadow_squares, (unsigned long)sa.shadow_pixels, worst, over8,
+                  pairs, untraced, wrong, bound);
+    assert_int_equal(ss.shadow_squares, 0);
+    assert_true(sa.shadow_squares > 0 && sa.shadow_pixels > 0);
+    assert_true(pairs >= 40 && untraced * 4 >= pairs); /* the edge was filled, not traced */
+    assert_int_equal(wrong, 0);                        /* every pixel on its own side */
+    assert_true(worst <= bound);
+    assert_true(sa.rays_primary * 5 <= ss.rays_primary * 4); /* fewer points traced */
+    /* probe mode fills them too, within test_probe_shadow_edge's bound for its probes */
+    pa.mode = RT_MODE_PROBE;
+    rt_render(&s, &v, &pa, adpx, W, &sp, work, NULL);
+    assert_true(sp.shadow_squares > 0);
+    assert_true(frame_diff(adpx, fullpx, &over8) <= 32);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1163,6 +1244,7 @@ int main(void)
         cmocka_unit_test(test_one_tone_checker),
         cmocka_unit_test(test_checker_cells),
         cmocka_unit_test(test_noise_pixels),
+        cmocka_unit_test(test_shadow_pixels),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),

@@ -326,6 +326,9 @@ typedef struct rt_stats {
     uint32_t noise_squares;   /* adaptive: squares on a noise texture split only by its colour,
                                  filled instead with each pixel's own texture (subsample.c) */
     uint32_t noise_pixels;    /* adaptive: pixels of those squares whose texture was evaluated */
+    uint32_t shadow_squares;  /* adaptive: squares split only by one light's shadow edge, filled
+                                 instead with each pixel's own test of that light (subsample.c) */
+    uint32_t shadow_pixels;   /* adaptive: pixels of those squares whose light was tested */
 } rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the
@@ -464,7 +467,9 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const 
  * direction to the light in *l where it does, else 0: a light behind the surface or exactly on
  * the point (no direction), or one shadow ray finding an occluder (counted in
  * st->rays_shadow). Shared by the shading (trace_light) and probe mode's light test, so both
- * decide light and shadow alike; p_out is read only when a shadow ray is cast. */
+ * decide light and shadow alike; p_out is read only when a shadow ray is cast. With st NULL no
+ * shadow ray is cast: the light's facing and n . l alone (a light's term where nothing would
+ * occlude it, rt_light_term). */
 static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene *s, rt_stats *st,
                                                                  int i, int id, int inside,
                                                                  const vec3 *p, const vec3 *p_out,
@@ -485,6 +490,8 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     if (!inside && !s->forced)
         occ &= ~((uint32_t)1 << id);
     if (occ) {
+        if (!st)
+            return ndl; /* no shadow ray */
         /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
          * light, behind a surface that passes closer to the light than that (a light
          * just above a floor seen from the underside of a ball: a false shadow). For
@@ -510,6 +517,24 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     }
     return ndl;
 }
+
+/* What one hit point looks like to the lights (the shading's trace_light, rt_light_term). */
+typedef struct rt_hit {
+    vec3 p, p_out; /* the point, and lifted R_EPS_OFFSET off the surface */
+    dir3 n, d;     /* normal facing the ray, and the ray's direction */
+    unit dn;       /* d . n (<= 0) */
+    rt_color base; /* diffuse colour at p */
+    const rt_material *m;
+    int id, inside;          /* object hit; 1 when hit from behind */
+    real ndl[RT_MAX_LIGHTS]; /* light i's n . l, set by trace_light where it lights the point */
+} rt_hit;
+
+/* Light i at the hit *h as the shading sees it (trace_light): with `term` NULL, its state there
+ * (rt_light_reach, its shadow ray counted in st): 0 unlit, 1 lit, 2 highlight. Else the state
+ * and the colour trace_light adds (Lambert and Phong) into *term as if nothing occluded the
+ * light: no shadow ray, so the state is 0 and the term 0 only where the light does not face the
+ * point. */
+int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i, rt_color *term);
 
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably

@@ -364,6 +364,7 @@ typedef struct ss_ctx {
     const rt_params *quad;
     rt_params p_quad;
     rt_probe_masks opaque;                     /* probe mode: what rt_probe_opaque tests */
+    dir3 ray;                                  /* ss_hit_at: the last primary ray's direction */
     real wt[RT_GRID_MAX + 1][RT_GRID_MAX + 1]; /* wt[n][i] = i / n */
 } ss_ctx;
 
@@ -482,14 +483,15 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0)
 
 /* Pixel (x, y)'s primary ray and its hit on object `id` as the tracer forms them (rt_view_ray,
  * rt_nearest_primary, the point along the ray): 1 and the point in *at, its distance in *t, or 0
- * for a ray that misses the object (a corner's neighbour, by rounding). */
+ * for a ray that misses the object (a corner's neighbour, by rounding); the ray's direction in
+ * c->ray. */
 static __attribute__((noinline)) int ss_hit_at(ss_ctx *c, int id, int x, int y, vec3 *at, real *t)
 {
     const rt_view *v = c->view;
-    dir3 d = rt_view_ray(v, x, y);
-    if (rt_nearest_primary(c->scene, d, (uint32_t)1 << id, t) != id)
+    c->ray = rt_view_ray(v, x, y);
+    if (rt_nearest_primary(c->scene, c->ray, (uint32_t)1 << id, t) != id)
         return 0;
-    *at = v3_along_in(v->eye, d, *t);
+    *at = v3_along_in(v->eye, c->ray, *t);
     return 1;
 }
 
@@ -702,6 +704,140 @@ static __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm,
     return 1;
 }
 
+/* Shadow pixels: the largest square side filled so (ss_shadow; measured on the board: larger
+ * squares cost more per pixel tested than their split). */
+#define SS_SHADOW_MAX 4
+
+/* Light i at pixel (x, y)'s primary hit on sm's primary object, a plane, found and formed as
+ * trace_ray forms it (ss_hit_at; the plane's normal, d . n, the point lifted off the surface;
+ * the diffuse colour, the material's or its checker's in sm's cell), seen by trace_light
+ * (rt_light_term): with term
+ * NULL its state as the pixel's full shade decides it, else its state and its term where nothing
+ * would occlude it, in *term; -1 for a ray that misses the object or meets it from behind (where
+ * trace_ray turns the normal). */
+static __attribute__((noinline)) int ss_light(ss_ctx *c, const rt_sample *sm, int i, int x, int y,
+                                              rt_color *term)
+{
+    const int id = sm->hits[0].object, cell = sm->cell;
+    const rt_scene *s = c->scene;
+    const rt_object *o = &s->objects[id];
+    rt_hit h;
+    real t;
+    if (!ss_hit_at(c, id, x, y, &h.p, &t))
+        return -1;
+    h.d = c->ray;
+    h.n = o->normal; /* a plane's (rt_shapes' plane normal) */
+    h.dn = d3_dot(h.d, h.n);
+    if (h.dn > 0)
+        return -1;
+    h.m = &s->materials[o->material];
+    h.id = id;
+    h.inside = 0;
+    h.p_out = v3_along_in(h.p, h.n, R_EPS_OFFSET);
+    h.base = cell && rt_cell_tone((uint8_t)cell) ? h.m->tex.color2 : h.m->diffuse;
+    return rt_light_term(s, c->stats, &h, i, term);
+}
+
+/* Do colours k[0..3] (in [0, 1]) differ by more than lim (Q16.16) in some channel? */
+static int ss_spread(const rt_color *const k[4], int32_t lim)
+{
+    for (int ch = 0; ch < 3; ch++) {
+        int32_t lo = 65536, hi = 0;
+        for (int n = 0; n < 4; n++) {
+            const int32_t v = r_unit_to_q16(ch == 0 ? k[n]->x : ch == 1 ? k[n]->y : k[n]->z);
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        if (hi - lo > lim)
+            return 1;
+    }
+    return 0;
+}
+
+/* A square of at most SS_SHADOW_MAX a side, not on the frame's last row or column, that
+ * rt_corners_differ splits for its lights (RT_SPLIT_LIGHT), k[] its corners (k[0]: its (0, 0) in
+ * the lattice): when the corners lie on a plane and differ only in light i, lit at some and
+ * unlit at others, with no highlight at any corner, each corner's colour is C = D + s T: s 1
+ * where light i lights it, T the light's term there as trace_light would add it if nothing
+ * occluded the light (ss_light:
+ * the corner's primary hit again, trace_light's Lambert and Phong terms, no shadow ray), D its
+ * colour without it. Each corner gets its colour unlit, D, and lit, L = D + T: its own colour
+ * for its own state, C - T or C + T in the other, within [0, 1] (a lit corner clamped at 1 gives
+ * a D darker than its own: the range test below sees most of that). Where D and L each agree
+ * within the threshold over the corners (as an unsplit square's contributions do;
+ * rt_corners_differ found the same ray tree at every corner) and the light faces every corner,
+ * the square is not split: D and L are interpolated as colours are (ss_fill: D into the frame,
+ * L aside), and each pixel takes D or L as light i lights its own primary hit or not, decided
+ * as its full shade decides it (ss_light: its ray, the object's test, trace_light with its
+ * shadow ray). Returns 1 when it filled the w x h pixels the square owns (points traced before
+ * keep their colour), 0 to split (also when a pixel's ray misses the object). Not on a noise
+ * texture (its colour is not the corners' in between: ss_noise's) nor where the view's eye is
+ * not the prepared one (ss_hit_at). Not on a sphere either: a sphere's lit and unlit corners
+ * are nearly always either side of its terminator, where the light stops facing it (measured
+ * over the intro's 13 benchmark frames: 4 of 2,906 squares filled were on spheres, for many
+ * tries that failed at their corners' terms). 64 bytes of stack for the lit colours. */
+static __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const k[4], int x0,
+                                               int y0, int w, int h)
+{
+    const rt_sample *sm = k[0];
+    const unsigned l0 = k[0]->lights,
+                   diff = (l0 ^ k[1]->lights) | (l0 ^ k[2]->lights) | (l0 ^ k[3]->lights);
+    const int li = diff ? __builtin_ctz(diff) >> 1 : 0; /* the light that differs */
+    /* exactly one light differs (one bit: lit or not), no highlight at any corner (at corner 0,
+     * or where the bit that differs is a highlight's); rt_nearest_primary needs the prepared eye */
+    const int id = sm->hits[0].object;
+    const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
+    if (w > SS_SHADOW_MAX || diff != 1u << (2 * li) || (l0 & RT_LIGHTS_HIGHLIGHT) ||
+        (m->tex.active && !sm->cell) || !(c->scene->plane_set >> id & 1) ||
+        c->view->eye.x != c->scene->eye_at.x || c->view->eye.y != c->scene->eye_at.y ||
+        c->view->eye.z != c->scene->eye_at.z)
+        return 0;
+    rt_color dl[2][4]; /* D and L */
+    const rt_color *kd[2][4];
+    for (int n = 0; n < 4; n++) {
+        const int lit = rt_light_state(k[n], li);
+        rt_color t;
+        if (ss_light(c, sm, li, x0 + (n & 1) * w, y0 + (n >> 1) * h, &t) != 1)
+            return 0; /* a miss, a highlight, or a corner the light does not face */
+        const int32_t cq[3] = {r_unit_to_q16(k[n]->color.x), r_unit_to_q16(k[n]->color.y),
+                               r_unit_to_q16(k[n]->color.z)},
+                      tq[3] = {r_unit_to_q16(t.x), r_unit_to_q16(t.y), r_unit_to_q16(t.z)};
+        int32_t d[3], l[3];
+        for (int ch = 0; ch < 3; ch++) {
+            d[ch] = !lit ? cq[ch] : cq[ch] > tq[ch] ? cq[ch] - tq[ch] : 0;
+            l[ch] = lit ? cq[ch] : cq[ch] < 65536 - tq[ch] ? cq[ch] + tq[ch] : 65536;
+        }
+        dl[0][n] = v3(r_from_q16(d[0]), r_from_q16(d[1]), r_from_q16(d[2]));
+        dl[1][n] = v3(r_from_q16(l[0]), r_from_q16(l[1]), r_from_q16(l[2]));
+        kd[0][n] = &dl[0][n];
+        kd[1][n] = &dl[1][n];
+    }
+    /* D and L each within the threshold over the corners (a byte is 257 in Q16.16) */
+    for (int j = 0; j < 2; j++)
+        if (ss_spread(kd[j], c->thr8 * 257))
+            return 0;
+    const int cs = SS_SHADOW_MAX;
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
+    uint32_t lit_px[SS_SHADOW_MAX * SS_SHADOW_MAX];
+    ss_fill(dst, c->stride, w, h, w, h, kd[0]);
+    ss_fill(lit_px, cs, w, h, w, h, kd[1]);
+    for (int j = 0; j < h; j++, dst += c->stride)
+        for (int i = 0; i < w; i++) {
+            const rt_sample *pt = sm + j * c->lstride + i;
+            if (pt->nhits) { /* a corner, or a point a neighbour traced */
+                dst[i] = ss_pixel(&pt->color);
+                continue;
+            }
+            c->stats->shadow_pixels++;
+            const int lit = ss_light(c, sm, li, x0 + i, y0 + j, NULL);
+            if (lit < 0)
+                return 0; /* a miss, by rounding */
+            if (lit)
+                dst[i] = lit_px[j * cs + i];
+        }
+    return 1;
+}
+
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
  * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
  * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
@@ -728,6 +864,10 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             if ((RT_COMPILED_EFFECTS & RT_FX_NOISE) && why == RT_SPLIT_CONTRIB &&
                 sm->alt_known == 2 && ss_noise(c, sm, k, x0, y0, w, h, own)) {
                 st->noise_squares++; /* filled with each pixel's texture instead */
+                return;
+            }
+            if (why == RT_SPLIT_LIGHT && !own && ss_shadow(c, k, x0, y0, w, h)) {
+                st->shadow_squares++; /* filled with each pixel's own light test instead */
                 return;
             }
             st->split[li]++;

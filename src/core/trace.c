@@ -68,16 +68,8 @@ static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d,
 #define TRACE_FIRST(c) 0
 #endif
 
-/* What one hit point looks like to the lights (trace_light's input). */
-typedef struct trace_hit {
-    vec3 p, p_out; /* the point, and lifted R_EPS_OFFSET off the surface */
-    dir3 n, d;     /* normal facing the ray, and the ray's direction */
-    unit dn;       /* d . n (<= 0) */
-    rt_color base; /* diffuse colour at p */
-    const rt_material *m;
-    int id, inside;          /* object hit; 1 when hit from behind */
-    real ndl[RT_MAX_LIGHTS]; /* light i's n . l, set by trace_light where it lights the point */
-} trace_hit;
+/* What one hit point looks like to the lights (trace_light's input): rt_hit (rt.h). */
+typedef rt_hit trace_hit;
 
 /* Adaptive mode, a primary hit h on a two-tone checker (the sample's cell non-zero), its lights
  * added (states `lights`): shading is linear in the diffuse colour b, whose factor E is the
@@ -129,8 +121,16 @@ static __attribute__((cold, noinline)) void trace_alt_end(uint8_t *to, const rt_
 
 /* Light i's Lambert and Phong terms at the hit, added to *col; returns the light's state (0
  * unlit, 1 lit, 2 highlight). Out of line on ARM (RT_OUT_OF_LINE): the caller's loop then keeps
- * less in registers. */
+ * less in registers; so in the 64 kB players too (the builds without probe mode), where
+ * trace_ray and rt_light_term share the one copy. Elsewhere (x86-64) inlined into both:
+ * trace_ray's loop over lights takes fewer instructions so (callgrind, 13 intro frames: float
+ * 667.4 M out of line, 654.1 M inlined). */
+#if defined(__arm__) || !RT_COMPILED_PROBE
 static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_color *col)
+#else
+static inline __attribute__((always_inline)) uint8_t trace_light(trace_ctx *c, trace_hit *h, int i,
+                                                                 rt_color *col)
+#endif
 {
     /* The hit's fields are read where they are used (not copied up front): most lights are
      * behind the surface or shadowed and need only p and n. */
@@ -328,6 +328,17 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         v3_within(p, R_SCENE_MAX))
         col = trace_secondary(c, &h, weight, level, travelled, col);
     return col;
+}
+
+__attribute__((cold)) int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i,
+                                        rt_color *term)
+{
+    trace_ctx c = {.scene = s, .stats = term ? NULL : st}; /* NULL: no shadow ray */
+    rt_color col = v3(0, 0, 0);
+    const int state = trace_light(&c, h, i, &col);
+    if (term)
+        *term = col;
+    return state;
 }
 
 /* Shared by rt_trace_pixel and rt_trace_pixel_from: inlined into each (`pri` NULL in the
