@@ -324,11 +324,14 @@ __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, 
     return fx_norm_scaled(sx, sy, sz, s, frac, len); /* one inlined copy */
 }
 
-dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
 {
+    real len;
     uint32_t m = fx_top_abs3_32(x, y, z);
-    if (m == 0)
-        return fx_norm_zero(len);
+    if (m == 0) {
+        *out = fx_norm_zero(&len);
+        return len;
+    }
     int s = __builtin_clz(m) - 2; /* the largest magnitude 2^s in [2^29, 2^30): s >= -2 */
     if (s >= 0) {
         x *= 1 << s;
@@ -339,7 +342,8 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
         y >>= -s;
         z >>= -s;
     }
-    return fx_norm_scaled(x, y, z, s, 16, len); /* one inlined copy */
+    *out = fx_norm_scaled(x, y, z, s, 16, &len); /* one inlined copy */
+    return len;
 }
 
 #else
@@ -402,18 +406,33 @@ __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, 
                           (int32_t)fx_round_shift(z, -s), s, frac, len);
 }
 
-dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
 {
+    real len;
     uint32_t m = fx_top_abs3_32(x, y, z);
-    if (m == 0)
-        return fx_norm_zero(len);
+    if (m == 0) {
+        *out = fx_norm_zero(&len);
+        return len;
+    }
     int s = __builtin_clz(m) - 16; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
-        return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
-    return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s),
-                          s, 16, len);
+        *out = fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, &len);
+    else
+        *out = fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s),
+                              fx_round_shift32(z, -s), s, 16, &len);
+    return len;
 }
 #endif
+
+/* fx_norm32_to with the length where it is asked for (len not NULL). */
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+{
+    dir3 d;
+    real l = fx_norm32_to(&d, x, y, z);
+    if (len)
+        *len = l;
+    return d;
+}
 
 /* The primary ray through a pixel (d3_ray): f + r*(step*ia) + u*(step*ib), ia and ib the
  * pixel's offsets from the image centre in half pixels, normalised. Formed in Q.58 when

@@ -465,8 +465,7 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     vec3 to_light = v3_sub_in(li->pos, *p);
     if (!v3_faces(to_light, n))
         return 0;
-    real dist;
-    *l = d3_norm(to_light, &dist);
+    const real dist = d3_norm_len(to_light, l);
     unit ndl = d3_dot(n, *l);
     if (ndl <= 0)
         return 0; /* the light is not in front of the surface */
@@ -487,7 +486,7 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
             vec3 to_light_out = v3_sub_in(li->pos, *p_out);
             sdist = 0;
             if (!v3_is_zero(to_light_out)) {
-                near_l = d3_norm(to_light_out, &sdist);
+                sdist = d3_norm_len(to_light_out, &near_l);
                 sl = &near_l;
             }
         }
