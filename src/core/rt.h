@@ -131,8 +131,12 @@ typedef struct rt_scene {
     unsigned effects;                  /* RT_FX_* bits the frame needs */
     int reach_depth;                   /* recursion depth the materials can reach */
     uint32_t occluders[RT_MAX_LIGHTS]; /* per light: objects that can shadow something */
-    int forced;                        /* 1: every effect forced on, nothing skipped */
-    uint32_t near_lights;              /* bit i: a surface passes within RT_NEAR_LIGHT of
+    /* Per light l and object j: the occluders[l] a shadow ray from a point of j toward l can
+     * meet; each sphere left out has a rejection (shadow_cull) that refuses every such ray, or
+     * lies wholly beyond the light's distance (rt_scene_prepare). Every object when forced. */
+    uint32_t occ_of[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
+    int forced;           /* 1: every effect forced on, nothing skipped */
+    uint32_t near_lights; /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
     /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
      * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 or
@@ -353,7 +357,7 @@ typedef struct rt_shape_ops {
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 
 /* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
- * derives the effects the scene needs: effects, reach_depth and occluders. */
+ * derives the effects the scene needs: effects, reach_depth, occluders and occ_of. */
 void rt_scene_prepare(rt_scene *s);
 
 /* The frame's mirror for rt_view_cull's mirror candidates: the first plane whose material
@@ -471,7 +475,7 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
         return 0; /* the light is not in front of the surface */
     /* A convex surface never shadows its own lit side; seen from inside (glass) it
      * can. Lights nothing can occlude cast no shadow ray at all. */
-    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
+    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occ_of[i][id] : 0;
     if (!inside && !s->forced)
         occ &= ~((uint32_t)1 << id);
     if (occ) {
