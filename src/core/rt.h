@@ -496,10 +496,11 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
         }
         /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
          * off the surface: a surface through the light itself (a light in a corner of
-         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+         * two walls) would otherwise shadow or not by rounding, pixel by pixel. (The
+         * difference of two positive reals is in range: r_add_in, r_sub's value.) */
         st->rays_shadow++;
         if (sdist > R_EPS_OFFSET &&
-            rt_occluded(s, st, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            rt_occluded(s, st, i, occ, p_out, sl, r_add_in(sdist, r_neg_in(R_EPS_OFFSET))))
             return 0;
     }
     return ndl;
