@@ -385,9 +385,11 @@ static real scene_cos_of(real sn)
  * (the sphere test's rounding, scene_cull's margin four times over), has no point the test could
  * find within the segment, which runs from p_out (within D_A + rho of the light: its distance
  * from the light only falls along it) toward the light. Either way B is left out of
- * occ_of[l][A], the same answers (test_shapes: test_shadow_pairs). Planes stay in every set; a
- * plane receives no such bound. Distances within the scene (below 30000) and sines: the sums are
- * in range (r_add_in). Once per frame: compiled for size. */
+ * occ_of[l][A], the same answers (test_shapes: test_shadow_pairs). Every object's own bit is
+ * left out of its set (a convex surface never shadows its lit side; rt_light_reach adds it back
+ * for a point seen from inside). Planes stay in every other set; a plane receives no such bound.
+ * Distances within the scene (below 30000) and sines: the sums are in range (r_add_in). Once per
+ * frame: compiled for size. */
 static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int l,
                                                                const real cone[])
 {
@@ -396,7 +398,7 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
     const vec3 lp = s->lights[l].pos;
     for (int a = 0; a < s->nobjects; a++) {
         const rt_object *oa = &s->objects[a];
-        uint32_t occ = s->occluders[l];
+        uint32_t occ = s->occluders[l] & ~((uint32_t)1 << a);
         vec3 va = v3_sub_in(oa->center, lp); /* positions in the scene cube */
         wide da2 = w_len2(va);
         real da = r_sqrt_w(da2), rho = r_add_in(oa->radius, delta);

@@ -131,9 +131,10 @@ typedef struct rt_scene {
     unsigned effects;                  /* RT_FX_* bits the frame needs */
     int reach_depth;                   /* recursion depth the materials can reach */
     uint32_t occluders[RT_MAX_LIGHTS]; /* per light: objects that can shadow something */
-    /* Per light l and object j: the occluders[l] a shadow ray from a point of j toward l can
-     * meet; each sphere left out has a rejection (shadow_cull) that refuses every such ray, or
-     * lies wholly beyond the light's distance (rt_scene_prepare). Every object when forced. */
+    /* Per light l and object j: the occluders[l] other than j that a shadow ray from a point
+     * of j toward l can meet; each sphere left out has a rejection (shadow_cull) that refuses
+     * every such ray, or lies wholly beyond the segment's reach (rt_scene_prepare). Every
+     * object, j too, when forced. */
     uint32_t occ_of[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
     int forced;           /* 1: every effect forced on, nothing skipped */
     uint32_t near_lights; /* bit i: a surface passes within RT_NEAR_LIGHT of
@@ -473,11 +474,14 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     unit ndl = d3_dot(n, *l);
     if (ndl <= 0)
         return 0; /* the light is not in front of the surface */
-    /* A convex surface never shadows its own lit side; seen from inside (glass) it
-     * can. Lights nothing can occlude cast no shadow ray at all. */
-    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occ_of[i][id] : 0;
-    if (!inside && !s->forced)
-        occ &= ~((uint32_t)1 << id);
+    /* A convex surface never shadows its own lit side (occ_of leaves the object itself out);
+     * seen from inside (glass) it can. Lights nothing can occlude cast no shadow ray at all. */
+    uint32_t occ = 0;
+    if (rt_scene_has(s, RT_FX_SHADOW)) {
+        occ = s->occ_of[i][id];
+        if (inside)
+            occ |= s->occluders[i] & ((uint32_t)1 << id);
+    }
     if (occ) {
         /* From p_out along l the segment would end up to 2 R_EPS_OFFSET from the
          * light, behind a surface that passes closer to the light than that (a light
