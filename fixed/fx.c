@@ -328,20 +328,18 @@ real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
 {
     real len;
     uint32_t m = fx_top_abs3_32(x, y, z);
-    if (m == 0) {
-        *out = fx_norm_zero(&len);
+    /* The largest magnitude 2^s in [2^29, 2^30): s >= -2. A component of 2^30 or more (8192
+     * units and beyond: rare) goes through fx_norm64, which forms the same s and the same
+     * shifted components from the 64-bit ones, hence the same results (test_numeric); the usual
+     * case then needs no right shifts. */
+    if (m == 0 || m >= (1u << 30)) {
+        *out = m == 0 ? fx_norm_zero(&len) : fx_norm64(x, y, z, 16, &len);
         return len;
     }
-    int s = __builtin_clz(m) - 2; /* the largest magnitude 2^s in [2^29, 2^30): s >= -2 */
-    if (s >= 0) {
-        x *= 1 << s;
-        y *= 1 << s;
-        z *= 1 << s;
-    } else {
-        x >>= -s;
-        y >>= -s;
-        z >>= -s;
-    }
+    int s = __builtin_clz(m) - 2;
+    x *= 1 << s;
+    y *= 1 << s;
+    z *= 1 << s;
     *out = fx_norm_scaled(x, y, z, s, 16, &len); /* one inlined copy */
     return len;
 }
