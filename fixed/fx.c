@@ -175,10 +175,14 @@ static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t
 /* The magnitudes of three 32-bit components (each at most 2^31) ORed: zero exactly when all
  * are, and with the same highest set bit as the largest of them, which is all normalisation
  * scales by (a clz); no compare. */
+static inline uint32_t fx_abs32(int32_t v)
+{
+    uint32_t sg = (uint32_t)(v >> 31); /* all ones for a negative v: (v ^ -1) + 1 = -v */
+    return ((uint32_t)v ^ sg) - sg;
+}
 static inline uint32_t fx_top_abs3_32(int32_t x, int32_t y, int32_t z)
 {
-    return (x < 0 ? 0u - (uint32_t)x : (uint32_t)x) | (y < 0 ? 0u - (uint32_t)y : (uint32_t)y) |
-        (z < 0 ? 0u - (uint32_t)z : (uint32_t)z);
+    return fx_abs32(x) | fx_abs32(y) | fx_abs32(z);
 }
 
 /* The same for three 64-bit components. */
