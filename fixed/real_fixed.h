@@ -62,13 +62,13 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
  * in one function (the view's vectors read in place, nothing passed on the stack but the three
  * numbers). */
 dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia, int32_t ib);
-/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
- * arithmetic from the start. */
+/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16): d3_norm, for once-a-frame callers
+ * and fallbacks. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
 #define FX_NORM_REALS(x, y, z, len) fx_norm32(x, y, z, len)
-/* fx_norm32's unit vector into *out and its length returned (always formed): the light
- * direction's form, which writes the direction where the caller keeps it and passes no length
- * pointer (fewer instructions a call on a 32-bit core). */
+/* fx_norm32's unit vector into *out and its length returned (always formed), the same results
+ * in 32-bit arithmetic from the start: the light direction's form (d3_norm_len), which writes
+ * the direction where the caller keeps it and passes no length pointer. */
 real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z);
 
 /* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
