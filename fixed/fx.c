@@ -175,10 +175,14 @@ static uint64_t fx_abs64(int64_t v) { return v < 0 ? 0 - (uint64_t)v : (uint64_t
 /* The magnitudes of three 32-bit components (each at most 2^31) ORed: zero exactly when all
  * are, and with the same highest set bit as the largest of them, which is all normalisation
  * scales by (a clz); no compare. */
+static inline uint32_t fx_abs32(int32_t v)
+{
+    uint32_t sg = (uint32_t)(v >> 31); /* all ones for a negative v: (v ^ -1) + 1 = -v */
+    return ((uint32_t)v ^ sg) - sg;
+}
 static inline uint32_t fx_top_abs3_32(int32_t x, int32_t y, int32_t z)
 {
-    return (x < 0 ? 0u - (uint32_t)x : (uint32_t)x) | (y < 0 ? 0u - (uint32_t)y : (uint32_t)y) |
-        (z < 0 ? 0u - (uint32_t)z : (uint32_t)z);
+    return fx_abs32(x) | fx_abs32(y) | fx_abs32(z);
 }
 
 /* The same for three 64-bit components. */
@@ -324,22 +328,24 @@ __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, 
     return fx_norm_scaled(sx, sy, sz, s, frac, len); /* one inlined copy */
 }
 
-dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
 {
+    real len;
     uint32_t m = fx_top_abs3_32(x, y, z);
-    if (m == 0)
-        return fx_norm_zero(len);
-    int s = __builtin_clz(m) - 2; /* the largest magnitude 2^s in [2^29, 2^30): s >= -2 */
-    if (s >= 0) {
-        x *= 1 << s;
-        y *= 1 << s;
-        z *= 1 << s;
-    } else {
-        x >>= -s;
-        y >>= -s;
-        z >>= -s;
+    /* The largest magnitude 2^s in [2^29, 2^30): s >= -2. A component of 2^30 or more (8192
+     * units and beyond: rare) goes through fx_norm64, which forms the same s and the same
+     * shifted components from the 64-bit ones, hence the same results (test_numeric); the usual
+     * case then needs no right shifts. */
+    if (m == 0 || m >= (1u << 30)) {
+        *out = m == 0 ? fx_norm_zero(&len) : fx_norm64(x, y, z, 16, &len);
+        return len;
     }
-    return fx_norm_scaled(x, y, z, s, 16, len); /* one inlined copy */
+    int s = __builtin_clz(m) - 2;
+    x *= 1 << s;
+    y *= 1 << s;
+    z *= 1 << s;
+    *out = fx_norm_scaled(x, y, z, s, 16, &len); /* one inlined copy */
+    return len;
 }
 
 #else
@@ -402,18 +408,29 @@ __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, 
                           (int32_t)fx_round_shift(z, -s), s, frac, len);
 }
 
-dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len)
+real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
 {
+    real len;
     uint32_t m = fx_top_abs3_32(x, y, z);
-    if (m == 0)
-        return fx_norm_zero(len);
+    if (m == 0) {
+        *out = fx_norm_zero(&len);
+        return len;
+    }
     int s = __builtin_clz(m) - 16; /* the largest magnitude 2^s in [2^15, 2^16) */
     if (s >= 0)
-        return fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, len);
-    return fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s), fx_round_shift32(z, -s),
-                          s, 16, len);
+        *out = fx_norm_scaled(x * (1 << s), y * (1 << s), z * (1 << s), s, 16, &len);
+    else
+        *out = fx_norm_scaled(fx_round_shift32(x, -s), fx_round_shift32(y, -s),
+                              fx_round_shift32(z, -s), s, 16, &len);
+    return len;
 }
 #endif
+
+/* fx_norm64's results for 32-bit components (the same s, shifted components and results as
+ * fx_norm32_to's, test_numeric), the length formed only where it is asked for, so one beyond
+ * real's range counts no event the caller did not ask for. Off the tracer's usual paths (once a
+ * frame, or fallbacks): the light direction has fx_norm32_to. */
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len) { return fx_norm64(x, y, z, 16, len); }
 
 /* The primary ray through a pixel (d3_ray): f + r*(step*ia) + u*(step*ib), ia and ib the
  * pixel's offsets from the image centre in half pixels, normalised. Formed in Q.58 when

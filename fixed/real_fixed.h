@@ -62,10 +62,14 @@ dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len);
  * in one function (the view's vectors read in place, nothing passed on the stack but the three
  * numbers). */
 dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t ia, int32_t ib);
-/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16), the same results in 32-bit
- * arithmetic from the start. */
+/* fx_norm64(x, y, z, 16, len) for a vector of reals (Q16.16): d3_norm, for once-a-frame callers
+ * and fallbacks. */
 dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len);
 #define FX_NORM_REALS(x, y, z, len) fx_norm32(x, y, z, len)
+/* fx_norm32's unit vector into *out and its length returned (always formed), the same results
+ * in 32-bit arithmetic from the start: the light direction's form (d3_norm_len), which writes
+ * the direction where the caller keeps it and passes no length pointer. */
+real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z);
 
 /* Sine and cosine of an angle given in degrees, to about 2e-9: for the camera and other
  * once-per-frame set-up where libfixmath's Q16.16 sine (about 1e-4 relative) is too coarse. */
@@ -630,6 +634,9 @@ static inline vec3 d3_scale(dir3 d, real s)
 
 /* The unit vector along v; its length goes to *len when len is not NULL. */
 static inline dir3 d3_norm(vec3 v, real *len) { return FX_NORM_REALS(v.x, v.y, v.z, len); }
+
+/* d3_norm(v, &len) with the unit vector into *out and the length returned. */
+static inline real d3_norm_len(vec3 v, dir3 *out) { return fx_norm32_to(out, v.x, v.y, v.z); }
 
 /* Unit vector along f + r*(step*ia) + u*(step*ib): the primary ray through a pixel, where
  * ia and ib are the pixel's offsets from the image centre in half pixels (fx_ray_dir, fx.c,

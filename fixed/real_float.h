@@ -274,6 +274,14 @@ static inline dir3 fl_norm(float x, float y, float z, real *len)
 
 static inline dir3 d3_norm(vec3 v, real *len) { return fl_norm(v.x, v.y, v.z, len); }
 
+/* d3_norm(v, &len) with the unit vector into *out and the length returned. */
+static inline real d3_norm_len(vec3 v, dir3 *out)
+{
+    real len;
+    *out = fl_norm(v.x, v.y, v.z, &len);
+    return len;
+}
+
 /* 1/r prepared for d3_norm_near (the float build normalises exactly and does not use it). */
 static inline rinv r_inv_len(real r) { return r; }
 

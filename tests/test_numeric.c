@@ -1248,6 +1248,29 @@ static void test_fixed_internals(void **state)
         check_r("fx_norm64:len", el, len, tol_at(TOL_NORM_LEN, el), "%s", what);
     }
 
+    /* fx_norm32 and fx_norm32_to: fx_norm64(x, y, z, 16, len)'s results bit for bit, for 32-bit
+     * components of every size (the largest magnitude from 1 to 2^31: the light direction's
+     * usual path below 2^30, fx_norm64 itself above) */
+    for (int k = 0; k < 40000; k++) {
+        int32_t c[3];
+        for (int j = 0; j < 3; j++)
+            c[j] = (int32_t)(uint32_t)rng() >> (rng() % 32);
+        if (k % 7 == 0)
+            c[k % 3] = k & 8 ? INT32_MIN : INT32_MAX;
+        if (c[0] == 0 && c[1] == 0 && c[2] == 0)
+            continue;
+        real want_len = 0, len = 1, len_to;
+        dir3 want = fx_norm64(c[0], c[1], c[2], 16, &want_len),
+             d = fx_norm32(c[0], c[1], c[2], &len), d_to;
+        len_to = fx_norm32_to(&d_to, c[0], c[1], c[2]);
+        if (d.x != want.x || d.y != want.y || d.z != want.z || len != want_len ||
+            d_to.x != want.x || d_to.y != want.y || d_to.z != want.z || len_to != want_len) {
+            n_failed++;
+            print_error("fx_norm32(%d, %d, %d) differs from fx_norm64's (%d, %d, %d), %d\n", c[0],
+                        c[1], c[2], want.x, want.y, want.z, want_len);
+        }
+    }
+
     /* fx_renorm: Q.60 vectors near unit length (first-order correction), and those too far
      * from it or beyond 2.0 (fallback to fx_norm64) */
     static const double scales[] = {1.0,         1 + 0x1p-22, 1 - 0x1p-22, 1 + 0x1p-21, 1 - 0x1p-21,

@@ -447,6 +447,129 @@ static void test_shadow_bound(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* The per-object occluder sets (rt_scene.occ_of) never change a result: shadow segments built
+ * as trace.c builds them (from a point, lifted R_EPS_OFFSET along a normal facing the light,
+ * aimed from the point or from the lifted point) from points of a sphere A (on its surface or
+ * off it by up to 1e-4) are blocked through rt_occluded with occ_of[0][A] exactly when they are
+ * with every other sphere (occluders). Half the cases are a sphere B between A and the light
+ * whose outline, seen from the light, passes within 0.02 radians of A's (overlapping or apart),
+ * the segment leaving A's outline on B's side, so that it grazes B; the others, clusters of 2
+ * to 6 spheres at random and points of A at random or on its rim. The sets leave spheres out
+ * for many of them. */
+static void test_shadow_pairs(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 100000, cut = 0, blocked = 0, tried = 0, graze_cut = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 10 == 0 ? 1000.0 : 10.0, size = i % 10 == 0 ? 50.0 : 2.0;
+        s = (rt_scene){0};
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        s.nlights = 1;
+        double ox = rnd(-span, span), oy = rnd(-span, span), oz = rnd(-span, span);
+        double lx = ox + rnd(-8, 8) * size, ly = oy + rnd(-8, 8) * size,
+               lz = oz + rnd(-8, 8) * size;
+        int graze = i & 8;
+        /* u: from the light toward A; w: at right angles to it, toward B */
+        double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+        double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-12;
+        ux /= un, uy /= un, uz /= un;
+        double wx = rnd(-1, 1), wy = rnd(-1, 1), wz = rnd(-1, 1), wu = wx * ux + wy * uy + wz * uz;
+        wx -= wu * ux, wy -= wu * uy, wz -= wu * uz;
+        double wn = sqrt(wx * wx + wy * wy + wz * wz) + 1e-12;
+        wx /= wn, wy /= wn, wz /= wn;
+        double px, py, pz, cx, cy, cz, r;
+        int a;
+        if (graze) {
+            double da = rnd(2, 10) * size, ra = rnd(0.05, 0.5) * da;
+            double db = rnd(0.2, 0.9) * da, rb = rnd(0.02, 0.9) * db;
+            double alpha = asin(ra / da), beta = asin(rb / db),
+                   th = alpha + beta + rnd(-0.02, 0.02);
+            s.nobjects = 2;
+            a = i & 16 ? 1 : 0;
+            cx = lx + ux * da, cy = ly + uy * da, cz = lz + uz * da, r = ra;
+            s.objects[a] = sphere(cx, cy, cz, ra);
+            s.objects[1 - a] = sphere(lx + (ux * cos(th) + wx * sin(th)) * db,
+                                      ly + (uy * cos(th) + wy * sin(th)) * db,
+                                      lz + (uz * cos(th) + wz * sin(th)) * db, rb);
+            /* the point where the line from the light touches A, on B's side */
+            double tl = sqrt(da * da - ra * ra) + rnd(-1e-4, 1e-4);
+            px = lx + (ux * cos(alpha) + wx * sin(alpha)) * tl;
+            py = ly + (uy * cos(alpha) + wy * sin(alpha)) * tl;
+            pz = lz + (uz * cos(alpha) + wz * sin(alpha)) * tl;
+        } else {
+            s.nobjects = 2 + i % 5;
+            for (int j = 0; j < s.nobjects; j++)
+                s.objects[j] = sphere(ox + rnd(-size, size), oy + rnd(-size, size),
+                                      oz + rnd(-size, size), rnd(0.02, 1) * size);
+            a = i % s.nobjects;
+            const rt_object *o = &s.objects[a];
+            cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
+            r = to_d(o->radius);
+            if (i & 2) { /* on its rim: w at right angles to the light */
+                double ax = cx - lx, ay = cy - ly, az = cz - lz;
+                double a2 = ax * ax + ay * ay + az * az + 1e-30,
+                       wa = (wx * ax + wy * ay + wz * az) / a2;
+                wx -= wa * ax, wy -= wa * ay, wz -= wa * az;
+                wn = sqrt(wx * wx + wy * wy + wz * wz) + 1e-12;
+                wx /= wn, wy /= wn, wz /= wn;
+            }
+            double rp = r + rnd(-1e-4, 1e-4);
+            px = cx + wx * rp, py = cy + wy * rp, pz = cz + wz * rp;
+        }
+        s.lights[0].pos = vd(lx, ly, lz);
+        rt_scene_prepare(&s);
+        vec3 p = vd(px, py, pz);
+        if (!v3_within(p, R_SCENE_MAX))
+            continue;
+        vec3 to_light = v3_sub(s.lights[0].pos, p);
+        if (v3_is_zero(to_light))
+            continue;
+        dir3 l = d3_norm(to_light, 0);
+        /* a normal facing the light, tilted at random */
+        dir3 nrm = d3_norm(
+            vd(to_d(l.x) + rnd(-0.9, 0.9), to_d(l.y) + rnd(-0.9, 0.9), to_d(l.z) + rnd(-0.9, 0.9)),
+            0);
+        if (d3_dot(nrm, l) <= 0)
+            continue;
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        vec3 t2 = v3_sub(s.lights[0].pos, i & 1 ? p_out : p);
+        if (v3_is_zero(t2))
+            continue;
+        real dist;
+        l = d3_norm(t2, &dist);
+        if (dist <= R_EPS_OFFSET)
+            continue;
+        real seg = r_sub(dist, R_EPS_OFFSET);
+        uint32_t self = (uint32_t)1 << a, all = s.occluders[0] & ~self,
+                 some = s.occ_of[0][a] & ~self;
+        if ((some & ~all) != 0)
+            fail_msg("occ_of %x is not within the occluders %x (case %d)", (unsigned)some,
+                     (unsigned)all, i);
+        rt_stats st = {0};
+        int want = all ? rt_occluded(&s, &st, 0, all, &p_out, &l, seg) : 0;
+        int got = some ? rt_occluded(&s, &st, 0, some, &p_out, &l, seg) : 0;
+        if (got != want)
+            fail_msg("with occ_of %d, with every sphere %d (case %d, %d spheres, receiver %d, "
+                     "centre %g %g %g radius %g)",
+                     got, want, i, s.nobjects, a, cx, cy, cz, r);
+        tried++;
+        blocked += want;
+        cut += some != all;
+        graze_cut += graze && some != all;
+    }
+    print_message("shadow pairs: %d segments from sphere points, %d blocked, %d with spheres left "
+                  "out by the receiver's occluder set (%d grazing the sphere left out)\n",
+                  tried, blocked, cut, graze_cut);
+    assert_true(tried > n / 4);
+    assert_true(blocked > n / 20);
+    assert_true(cut > n / 10);
+    assert_true(graze_cut > n / 40);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 /* rt_nearest_primary (spheres' l and quick rejection prepared for the camera's eye) finds the
  * same object at the same distance as rt_nearest, for rays from the eye that graze spheres,
  * miss them by a hair or start inside one, and rejects early on many of them. */
@@ -844,7 +967,7 @@ int main(void)
         cmocka_unit_test(test_shadow_bound),     cmocka_unit_test(test_behind_cut),
         cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_primary_tiles),
         cmocka_unit_test(test_mirror_tiles),     cmocka_unit_test(test_sample_record),
-        cmocka_unit_test(test_far_mirror_chain),
+        cmocka_unit_test(test_far_mirror_chain), cmocka_unit_test(test_shadow_pairs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -101,8 +101,11 @@ void rt_scene_force_effects(rt_scene *s)
     s->effects = RT_FX_ALL;
     s->reach_depth = RT_MAX_DEPTH;
     s->forced = 1;
-    for (int l = 0; l < RT_MAX_LIGHTS; l++)
+    for (int l = 0; l < RT_MAX_LIGHTS; l++) {
         s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
+        for (int j = 0; j < RT_MAX_OBJECTS; j++)
+            s->occ_of[l][j] = s->occluders[l];
+    }
 }
 
 /* Does the surface of object o pass within RT_NEAR_LIGHT of the point q? */
@@ -353,6 +356,79 @@ static __attribute__((cold, noinline)) void scene_shadow_quads(rt_scene *s, int 
     }
 }
 
+/* cos(asin(sn)) for a sine sn in [0, 1], rounded down (by 2 steps: the square root's rounding,
+ * 1 - sn^2 exact as a wide). */
+static real scene_cos_of(real sn)
+{
+    return r_sub(r_sqrt_w(w_sub(w_sq(R_ONE), w_sq(sn))), r_muli(R_LSB, 2));
+}
+
+/* Light l's occluders per object (rt_scene.occ_of), given each object's cone[] for the light
+ * (scene_cull: the sine sn of the half-angle around the direction u_c from the light to the
+ * centre outside which its shadow-ray rejection refuses a ray, 0 for none).
+ *
+ * A shadow ray from a point of sphere A (centre c_A, radius r, C_A = c_A - light, D_A = |C_A|)
+ * leaves its hit point p or the offset point p_out, within rho = r + delta + 2 R_EPS_OFFSET of
+ * c_A: delta bounds a hit point's distance from its surface (docs/numerics.md: 1e-4 fixed, 6e-7
+ * times the coordinates float; the sphere test's rounding grows as 2^-14 of the distances in
+ * rt-fixed16), taken as 2^-8 + 4096 * 2^(3 - U_LEN_ERR_SHIFT) (1/8 in fixed and float, 2 in
+ * rt-fixed16). Its direction u = -d (from the light toward the point, as rt_light_reach forms d)
+ * is then within asin(rho / D_A) of C_A's, plus the rounding of d (2^-26 fixed, 2^-20 float,
+ * 2^-13 rt-fixed16). Another sphere B whose cone (sine sB around C_B) is further off C_A than
+ * that, angle(C_A, C_B) > asin(rho / D_A) + asin(sB) + 2^-9, rejects every such ray: by the
+ * triangle inequality of angles, u is then further than asin(sB) off C_B. As cosines (both
+ * angles at most pi / 2, their sum at most pi; cos is 1-Lipschitz), times D_A D_B: C_A . C_B <
+ * D_B (sqrt(D_A^2 - rho^2) cB - rho sB - D_A 2^-9 - 4 LSB), cB = cos(asin(sB)); the dot product
+ * and the squares exact (wide), the square roots rounded down, the 4 LSB holding the rounding of
+ * the products and of D_B: no division, no normalisation. And a sphere B wholly farther from
+ * the light than the segment reaches, D_B - r_B - m > D_A + rho, m = 2^-10 + (D_B + r_B) 2^-12
+ * (the sphere test's rounding, scene_cull's margin four times over), has no point the test could
+ * find within the segment, which runs from p_out (within D_A + rho of the light: its distance
+ * from the light only falls along it) toward the light. Either way B is left out of
+ * occ_of[l][A], the same answers (test_shapes: test_shadow_pairs). Every object's own bit is
+ * left out of its set (a convex surface never shadows its lit side; rt_light_reach adds it back
+ * for a point seen from inside). Planes stay in every other set; a plane receives no such bound.
+ * Distances within the scene (below 30000) and sines: the sums are in range (r_add_in). Once per
+ * frame: compiled for size. */
+static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int l,
+                                                               const real cone[])
+{
+    const real delta = r_add(r_add(R(0.00390625), r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
+                             r_muli(R_EPS_OFFSET, 2));
+    const vec3 lp = s->lights[l].pos;
+    for (int a = 0; a < s->nobjects; a++) {
+        const rt_object *oa = &s->objects[a];
+        uint32_t occ = s->occluders[l] & ~((uint32_t)1 << a);
+        vec3 va = v3_sub_in(oa->center, lp); /* positions in the scene cube */
+        wide da2 = w_len2(va);
+        real da = r_sqrt_w(da2), rho = r_add_in(oa->radius, delta);
+        /* (D_A - rho above D_A 2^-8: D_A^2 - rho^2 clearly positive in either build) */
+        if (oa->kind == RT_SPHERE && r_add_in(rho, r_shr(da, 8)) < da) {
+            /* D_A cos(asin(rho / D_A)), rounded down; the segment's reach from the light */
+            real dca = r_add_in(r_sqrt_w(w_sub(da2, w_sq(rho))), r_neg_in(r_muli(R_LSB, 2)));
+            real reach = r_add_in(da, rho), margin = r_add_in(r_shr(da, 9), r_muli(R_LSB, 4));
+            for (int b = 0; b < s->nobjects; b++) {
+                const rt_object *ob = &s->objects[b];
+                vec3 vb = v3_sub_in(ob->center, lp);
+                if (b == a || ob->kind != RT_SPHERE)
+                    continue;
+                real db = r_sqrt_w(w_len2(vb)), sb = cone[b];
+                real m = r_add_in(R(0.0009765625), r_shr(r_add_in(db, ob->radius), 12));
+                wide dot = w_add(w_add(w_mul(va.x, vb.x), w_mul(va.y, vb.y)), w_mul(va.z, vb.z));
+                /* beyond the segment's reach, or its cone apart from the receiver's */
+                if (r_add_in(db, r_neg_in(r_add_in(ob->radius, m))) > reach ||
+                    (sb > 0 &&
+                     dot < w_mul(r_add_in(r_add_in(r_mul_in(dca, scene_cos_of(sb)),
+                                                   r_neg_in(r_mul_in(rho, sb))),
+                                          r_neg_in(margin)),
+                                 db)))
+                    occ &= ~((uint32_t)1 << b);
+            }
+        }
+        s->occ_of[l][a] = occ;
+    }
+}
+
 /* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
  * (a product of rounded products of non-negative values), 0 at 0 and 1 at 1, so every v up to
  * the result gives 0 and the highlight term can be skipped there, exactly. */
@@ -427,4 +503,6 @@ void rt_scene_prepare(rt_scene *s)
     for (int l = 0; l < s->nlights; l++)
         scene_shadow_quads(s, l, cone[l]);
     scene_derive_effects(s);
+    for (int l = 0; l < s->nlights; l++)
+        scene_shadow_pairs(s, l, cone[l]);
 }

@@ -131,8 +131,13 @@ typedef struct rt_scene {
     unsigned effects;                  /* RT_FX_* bits the frame needs */
     int reach_depth;                   /* recursion depth the materials can reach */
     uint32_t occluders[RT_MAX_LIGHTS]; /* per light: objects that can shadow something */
-    int forced;                        /* 1: every effect forced on, nothing skipped */
-    uint32_t near_lights;              /* bit i: a surface passes within RT_NEAR_LIGHT of
+    /* Per light l and object j: the occluders[l] other than j that a shadow ray from a point
+     * of j toward l can meet; each sphere left out has a rejection (shadow_cull) that refuses
+     * every such ray, or lies wholly beyond the segment's reach (rt_scene_prepare). Every
+     * object, j too, when forced. */
+    uint32_t occ_of[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
+    int forced;           /* 1: every effect forced on, nothing skipped */
+    uint32_t near_lights; /* bit i: a surface passes within RT_NEAR_LIGHT of
                                            light i (shadow rays are then aimed with care) */
     /* Per light and sphere, a quick shadow-ray rejection (0: none): a shadow ray toward light
      * l along d certainly misses sphere i when c = center - light pos has c . d >= 0 or
@@ -362,7 +367,7 @@ extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
 dir3 rt_sphere_normal(const rt_object *o, const vec3 *p);
 
 /* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero) and
- * derives the effects the scene needs: effects, reach_depth and occluders. */
+ * derives the effects the scene needs: effects, reach_depth, occluders and occ_of. */
 void rt_scene_prepare(rt_scene *s);
 
 /* The frame's mirror for rt_view_cull's mirror candidates: the first plane whose material
@@ -479,16 +484,18 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     vec3 to_light = v3_sub_in(li->pos, *p);
     if (!v3_faces(to_light, n))
         return 0;
-    real dist;
-    *l = d3_norm(to_light, &dist);
+    const real dist = d3_norm_len(to_light, l);
     unit ndl = d3_dot(n, *l);
     if (ndl <= 0)
         return 0; /* the light is not in front of the surface */
-    /* A convex surface never shadows its own lit side; seen from inside (glass) it
-     * can. Lights nothing can occlude cast no shadow ray at all. */
-    uint32_t occ = rt_scene_has(s, RT_FX_SHADOW) ? s->occluders[i] : 0;
-    if (!inside && !s->forced)
-        occ &= ~((uint32_t)1 << id);
+    /* A convex surface never shadows its own lit side (occ_of leaves the object itself out);
+     * seen from inside (glass) it can. Lights nothing can occlude cast no shadow ray at all. */
+    uint32_t occ = 0;
+    if (rt_scene_has(s, RT_FX_SHADOW)) {
+        occ = s->occ_of[i][id];
+        if (inside)
+            occ |= s->occluders[i] & ((uint32_t)1 << id);
+    }
     if (occ) {
         if (!st)
             return ndl; /* no shadow ray */
@@ -503,16 +510,17 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
             vec3 to_light_out = v3_sub_in(li->pos, *p_out);
             sdist = 0;
             if (!v3_is_zero(to_light_out)) {
-                near_l = d3_norm(to_light_out, &sdist);
+                sdist = d3_norm_len(to_light_out, &near_l);
                 sl = &near_l;
             }
         }
         /* The segment stops R_EPS_OFFSET short of the light, as it starts that far
          * off the surface: a surface through the light itself (a light in a corner of
-         * two walls) would otherwise shadow or not by rounding, pixel by pixel. */
+         * two walls) would otherwise shadow or not by rounding, pixel by pixel. (The
+         * difference of two positive reals is in range: r_add_in, r_sub's value.) */
         st->rays_shadow++;
         if (sdist > R_EPS_OFFSET &&
-            rt_occluded(s, st, i, occ, p_out, sl, r_sub(sdist, R_EPS_OFFSET)))
+            rt_occluded(s, st, i, occ, p_out, sl, r_add_in(sdist, r_neg_in(R_EPS_OFFSET))))
             return 0;
     }
     return ndl;
