@@ -42,11 +42,11 @@ print_sizes() {
   for f in "$FIXED" "$FIXED16" "$FLOAT"; do
     [ -f "$f" ] || continue
     # the 64 KiB limit is the fixed images' (the soft-float image is the comparison build)
-    local limit="limit $CODE_LIMIT"
-    [ "$f" = "$FLOAT" ] && limit="comparison build, no limit"
-    printf '%s: code+rodata+data %d B (%s), data %d + bss %d + stack reserve %d = %d B RAM (limit %d), framebuffers %d B\n' \
+    local limit="limit $CODE_LIMIT" ram_limit="limit $RAM_LIMIT"
+    [ "$f" = "$FLOAT" ] && limit="comparison build, no limit" && ram_limit="no limit"
+    printf '%s: code+rodata+data %d B (%s), data %d + bss %d + stack reserve %d = %d B RAM (%s), framebuffers %d B\n' \
       "$f" "$(code_bytes "$f")" "$limit" "$(section "$f" .data)" "$(section "$f" .bss)" \
-      "$(section "$f" .stack)" "$(ram_bytes "$f")" "$RAM_LIMIT" "$(section "$f" .fb)"
+      "$(section "$f" .stack)" "$(ram_bytes "$f")" "$ram_limit" "$(section "$f" .fb)"
   done
 }
 
