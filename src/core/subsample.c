@@ -221,6 +221,21 @@ static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh
     p[3] |= (uint32_t)SS_V(l + ss_half(r - l)) >> 16 << sh;
 }
 
+/* One row of the fill: pixel 0 from the V forms v0..v2 (SS_V), pixels 1..n-1 by adding the steps
+ * s0..s2 (V units) once per pixel. */
+static inline __attribute__((always_inline)) void ss_row(uint32_t *dst, int n, int32_t v0,
+                                                         int32_t v1, int32_t v2, int32_t s0,
+                                                         int32_t s1, int32_t s2)
+{
+    dst[0] = ss_pack(v0, v1, v2);
+    for (int i = 1; i < n; i++) {
+        v0 += s0;
+        v1 += s1;
+        v2 += s2;
+        dst[i] = ss_pack(v0, v1, v2);
+    }
+}
+
 /* Bilinear fill of `cols` x `rows` pixels from dst (cols <= w + 1, rows <= h + 1) from the
  * colours of the corners k[]: (0, 0), (w, 0), (0, h), (w, h), each in [0, 1]. Row j's ends are
  * l = k0 + ss_mul(k2 - k0, j / h) and r = k1 + ss_mul(k3 - k1, j / h) (k2 and k3 themselves in
@@ -286,13 +301,7 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             const int32_t s0 = ss_shr_round(r0 - l0, kw) * 255,
                           s1 = ss_shr_round(r1 - l1, kw) * 255,
                           s2 = ss_shr_round(r2 - l2, kw) * 255;
-            dst[0] = ss_pack(v0, v1, v2);
-            for (int i = 1; i < inner; i++) {
-                v0 += s0;
-                v1 += s1;
-                v2 += s2;
-                dst[i] = ss_pack(v0, v1, v2);
-            }
+            ss_row(dst, inner, v0, v1, v2, s0, s1, s2);
             if (right)
                 dst[w] = ss_pack(SS_V(r0), SS_V(r1), SS_V(r2));
         }
@@ -313,17 +322,11 @@ static void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             e = m;
         }
         int32_t v0 = SS_V(e[0]), v1 = SS_V(e[1]), v2 = SS_V(e[2]);
-        dst[0] = ss_pack(v0, v1, v2);
-        if (inner > 1) {
-            int32_t s0 = ss_mul(e[3] - e[0], sx) * 255, s1 = ss_mul(e[4] - e[1], sx) * 255,
-                    s2 = ss_mul(e[5] - e[2], sx) * 255;
-            for (int i = 1; i < inner; i++) {
-                v0 += s0;
-                v1 += s1;
-                v2 += s2;
-                dst[i] = ss_pack(v0, v1, v2);
-            }
-        }
+        if (inner > 1)
+            ss_row(dst, inner, v0, v1, v2, ss_mul(e[3] - e[0], sx) * 255,
+                   ss_mul(e[4] - e[1], sx) * 255, ss_mul(e[5] - e[2], sx) * 255);
+        else
+            dst[0] = ss_pack(v0, v1, v2);
         if (right)
             dst[w] = ss_pack(SS_V(e[3]), SS_V(e[4]), SS_V(e[5]));
     }
