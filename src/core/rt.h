@@ -461,6 +461,11 @@ int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, ui
  * must be in it (rt_view_candidates of the ray's pixel, or all bits). */
 int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t);
 
+/* rt_nearest_primary(s, d, 1 << id, t) == id for object id, a plane, without the loop: its
+ * last-plane path (the plane test from eye_num, the division), the same t; 0 for a miss.
+ * Only in the builds with probe mode (RT_COMPILED_PROBE: the players stay within their size). */
+int rt_plane_primary(const rt_scene *s, int id, dir3 d, real *t);
+
 /* Does any object of the set `occ` (bit i: object i) block the shadow ray toward light
  * `light`, the segment from org along d of length dist? Counts the objects tested in
  * st->shadow_tests. */

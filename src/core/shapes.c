@@ -239,6 +239,18 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
     return best;
 }
 
+#if RT_COMPILED_PROBE
+int rt_plane_primary(const rt_scene *s, int id, dir3 d, real *t)
+{
+    real num;
+    unit den;
+    if (!plane_meets(&s->objects[id], s->eye_num[id], d, R_T_MAX, 1, &num, &den))
+        return 0;
+    *t = r_div_u_pos(num, den);
+    return 1;
+}
+#endif
+
 /* sphere_intersect's answer for a shadow segment, whose hit point is not needed: the same
  * steps up to the discriminant, then r_sphere_span decides where the hit would lie (the fixed
  * build without the square root). */

@@ -492,8 +492,15 @@ static __attribute__((noinline)) int ss_hit_at(ss_ctx *c, int id, int x, int y, 
 {
     const rt_view *v = c->view;
     c->ray = rt_view_ray(v, x, y);
+#if RT_COMPILED_PROBE
+    const rt_scene *s = c->scene;
+    if (s->plane_set >> id & 1 ? !rt_plane_primary(s, id, c->ray, t)
+                               : rt_nearest_primary(s, c->ray, (uint32_t)1 << id, t) != id)
+        return 0; /* a plane: its test alone (rt_plane_primary), the same t */
+#else
     if (rt_nearest_primary(c->scene, c->ray, (uint32_t)1 << id, t) != id)
         return 0;
+#endif
     *at = v3_along_in(v->eye, c->ray, *t);
     return 1;
 }
