@@ -266,7 +266,10 @@ all: $(PLAYERS)
 # backend. Fixed: libfixmath compiled from the same fetched source; float: soft-float.
 ARM_CC := arm-none-eabi-gcc
 ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
-ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections
+# The boards play only the scene compiled into them: rt_scene holds that many objects (not 32),
+# which saves RAM (the intro has 7; src/app/intro.c refuses a compiled scene with more).
+BOARD_MAX_OBJECTS := 16
+ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
@@ -334,7 +337,8 @@ $(PROFILE_PLUGIN): platform/arm/qemu_profile.c
 # ABI, libfixmath compiled from the same fetched source. make m3 builds it and prints its sizes;
 # qemu-m3 plays it on the emulated OLED; qemu-m3-frames renders FRAMES into build/qemu-m3/.
 M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
-M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINTRO_W=128 -DINTRO_H=64
+M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINTRO_W=128 -DINTRO_H=64 \
+             -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments
 M3_OBJ := $(BUILD)/obj/m3-fixed

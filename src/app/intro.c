@@ -329,6 +329,10 @@ int app_main(int argc, char **argv)
             return 2;
         argc = 2 + n;
     }
+    if (scn_intro.nobjects > RT_MAX_OBJECTS) {
+        plat_log("intro: error: the compiled scene has more objects than RT_MAX_OBJECTS");
+        return 2;
+    }
     rt_params p = knobs_params(&intro_knobs, 0);
     if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work) {
         intro_line l = {.n = 0};

@@ -12,7 +12,15 @@
 
 #include "real.h"
 
-#define RT_MAX_OBJECTS 32 /* at most 32: sets of objects are 32-bit masks */
+/* Objects a scene may have: at most 32 (sets of objects are 32-bit masks). The boards, which
+ * play only the scene compiled into them, define it smaller to save RAM (Makefile:
+ * BOARD_MAX_OBJECTS; src/app/intro.c refuses a compiled scene with more). */
+#ifndef RT_MAX_OBJECTS
+#define RT_MAX_OBJECTS 32
+#endif
+#if RT_MAX_OBJECTS > 32 || RT_MAX_OBJECTS < 1
+#error "RT_MAX_OBJECTS must be 1..32: sets of objects are 32-bit masks"
+#endif
 #define RT_MAX_LIGHTS 4
 #define RT_MAX_MATERIALS 16
 #define RT_MAX_DEPTH 8
