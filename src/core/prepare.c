@@ -103,7 +103,7 @@ void rt_scene_force_effects(rt_scene *s)
     s->forced = 1;
     for (int l = 0; l < RT_MAX_LIGHTS; l++) {
         s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
-        for (int j = 0; j < RT_MAX_OBJECTS; j++)
+        for (int j = 0; RT_SHADOW_SETS && j < RT_MAX_OBJECTS; j++)
             s->occ_of[l][j] = s->occluders[l];
     }
 }
@@ -500,9 +500,9 @@ void rt_scene_prepare(rt_scene *s)
         s->eye_num[i] = o->kind == RT_PLANE ? r_sub(o->offset, v3_dot_d(s->eye_at, o->normal)) : 0;
     }
     scene_bound(s);
-    for (int l = 0; l < s->nlights; l++)
+    for (int l = 0; RT_SHADOW_SETS && l < s->nlights; l++)
         scene_shadow_quads(s, l, cone[l]);
     scene_derive_effects(s);
-    for (int l = 0; l < s->nlights; l++)
+    for (int l = 0; RT_SHADOW_SETS && l < s->nlights; l++)
         scene_shadow_pairs(s, l, cone[l]);
 }

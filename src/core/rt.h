@@ -285,6 +285,16 @@ static inline int rt_light_state(const rt_sample *sm, int i) { return sm->lights
  * subsampling whose new points are probed first and shaded only where needed (probe.c). */
 enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE, RT_MODE_PROBE };
 
+/* Are the shadow rays' narrower occluder sets compiled in: per object (rt_scene.occ_of,
+ * scene_shadow_pairs) and per quadrant of directions (shadow_quad, scene_shadow_quads)? The
+ * intro player defines this to 0 (its 64 kB): a shadow ray from object j then tests every
+ * occluder but j itself, as rt_light_reach forms it, the rejections of each sphere deciding.
+ * The pictures are the same: the sets leave out only spheres whose rejection (shadow_cull)
+ * refuses the ray anyway, or that lie beyond its reach (rt_scene_prepare; test_shapes). */
+#ifndef RT_SHADOW_SETS
+#define RT_SHADOW_SETS 1
+#endif
+
 /* Is probe mode compiled in? The intro player (build/intro-*), which renders adaptively only,
  * defines this to 0 to stay within its 64 kB: rt_render then takes RT_MODE_PROBE as adaptive. */
 #ifndef RT_COMPILED_PROBE
@@ -505,9 +515,15 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
      * seen from inside (glass) it can. Lights nothing can occlude cast no shadow ray at all. */
     uint32_t occ = 0;
     if (rt_scene_has(s, RT_FX_SHADOW)) {
-        occ = s->occ_of[i][id];
-        if (inside)
-            occ |= s->occluders[i] & ((uint32_t)1 << id);
+        if (RT_SHADOW_SETS) {
+            occ = s->occ_of[i][id];
+            if (inside)
+                occ |= s->occluders[i] & ((uint32_t)1 << id);
+        } else {
+            occ = s->occluders[i];
+            if (!inside && !s->forced)
+                occ &= ~((uint32_t)1 << id);
+        }
     }
     if (occ) {
         if (!st)

@@ -294,8 +294,10 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const 
     if (!occ)
         return 0;
     /* Only the objects that can block a ray of its quadrant (rt_scene_prepare). */
-    const dir3 *pl = s->shadow_plane[light];
-    occ &= s->shadow_quad[light][d3_below(dd, pl[0]) | d3_below(dd, pl[1]) << 1];
+    if (RT_SHADOW_SETS) {
+        const dir3 *pl = s->shadow_plane[light];
+        occ &= s->shadow_quad[light][d3_below(dd, pl[0]) | d3_below(dd, pl[1]) << 1];
+    }
     /* Set bits in increasing order (the objects' order); counted once, after the loop. The
      * lowest bit's clz j gives object 31 - j. */
     for (; occ; occ &= occ - 1) {
