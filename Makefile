@@ -229,7 +229,8 @@ PLAYER_COLD := src/core/subsample.c src/core/texture.c src/core/noise.c src/core
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
-                 -fno-unwind-tables -fno-stack-protector -fno-pie -fno-plt -DRT_COMPILED_PROBE=0 -DRT_SHADOW_SETS=0
+                 -fno-unwind-tables -fno-stack-protector -fno-pie -fno-plt -DRT_COMPILED_PROBE=0 -DRT_SHADOW_SETS=0 \
+                 -DRT_PLANE_CULL=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float

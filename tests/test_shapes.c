@@ -570,6 +570,113 @@ static void test_shadow_pairs(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* The plane rule of the occluder sets (scene_shadow_pairs): a plane left out of a sphere's
+ * set never blocks a shadow ray cast from that sphere. A floor (tilted at random in half the
+ * cases) with a sphere resting on it (tangent, or up to 0.05 above) and another below it (so
+ * the floor is an occluder), a light above the floor at 0.3 to 90 degrees' elevation from
+ * the resting sphere; points of the resting sphere (half of them in the cap within 8 degrees
+ * of its contact point, where p_out can dip below the floor) with the normal the tracer forms
+ * there, seen from outside or (a quarter) from inside, which adds the planes back as
+ * rt_light_reach does; only rays the tracer casts (n . l > 0). The segments are blocked with
+ * the set exactly as with every occluder. A floor dropped for any sphere that does not cut it
+ * fails it: low lights reach the contact cap. */
+static void test_plane_pairs(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 100000, tried = 0, cut = 0, floor_blocks = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        s = (rt_scene){0};
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        s.nlights = 1;
+        s.nobjects = 3;
+        /* an orthonormal frame: e (the floor's normal), f and g along the floor */
+        double ex = 0, ey = 1, ez = 0;
+        if (i & 4) {
+            ex = rnd(-1, 1), ey = rnd(0.2, 1), ez = rnd(-1, 1);
+            double en = sqrt(ex * ex + ey * ey + ez * ez);
+            ex /= en, ey /= en, ez /= en;
+        }
+        double fx = ey, fy = -ex, fz = 0, fn = sqrt(fx * fx + fy * fy) + 1e-12;
+        if (fn < 0.1)
+            fx = 0, fy = ez, fz = -ey, fn = sqrt(fy * fy + fz * fz);
+        fx /= fn, fy /= fn, fz /= fn;
+        double gx = ey * fz - ez * fy, gy = ez * fx - ex * fz, gz = ex * fy - ey * fx;
+        double off = rnd(-3, 3), r = rnd(0.1, 2), h = r + (i & 8 ? rnd(0, 0.05) : 0);
+        double u = rnd(-5, 5), v = rnd(-5, 5);
+        int a = i % 2, pl = 2;
+        s.objects[pl] = plane(ex, ey, ez, off);
+        /* where the floor's normal is tilted, its stored normal is the one the rule uses */
+        double cx = (off + h) * ex + u * fx + v * gx, cy = (off + h) * ey + u * fy + v * gy,
+               cz = (off + h) * ez + u * fz + v * gz;
+        s.objects[a] = sphere(cx, cy, cz, r);
+        s.objects[1 - a] =
+            sphere(cx + 3 * fx - 2 * ex, cy + 3 * fy - 2 * ey, cz + 3 * fz - 2 * ez, 1);
+        double el = i & 16 ? rnd(0.005, 0.15) : rnd(0.005, 1.57), az = rnd(0, 6.2832),
+               dl = rnd(1.2, 4) * r + rnd(0, 40);
+        double lh = sin(el) * dl, lf = cos(el) * cos(az) * dl, lg = cos(el) * sin(az) * dl;
+        double lx = cx + lh * ex + lf * fx + lg * gx, ly = cy + lh * ey + lf * fy + lg * gy,
+               lz = cz + lh * ez + lf * fz + lg * gz;
+        s.lights[0].pos = vd(lx, ly, lz);
+        rt_scene_prepare(&s);
+        /* a point of the resting sphere: in its contact cap, or anywhere */
+        double qx, qy, qz;
+        if (i & 32) {
+            double th = rnd(0, 0.14), ph = rnd(0, 6.2832);
+            qx = -cos(th) * ex + sin(th) * (cos(ph) * fx + sin(ph) * gx);
+            qy = -cos(th) * ey + sin(th) * (cos(ph) * fy + sin(ph) * gy);
+            qz = -cos(th) * ez + sin(th) * (cos(ph) * fz + sin(ph) * gz);
+        } else {
+            qx = rnd(-1, 1), qy = rnd(-1, 1), qz = rnd(-1, 1);
+        }
+        double qn = sqrt(qx * qx + qy * qy + qz * qz) + 1e-12, rp = r + rnd(-1e-4, 1e-4);
+        vec3 p = vd(cx + qx / qn * rp, cy + qy / qn * rp, cz + qz / qn * rp);
+        dir3 nrm = rt_sphere_normal(&s.objects[a], &p);
+        int inside = (i & 3) == 3;
+        if (inside)
+            nrm = d3_neg(nrm);
+        vec3 to_light = v3_sub(s.lights[0].pos, p);
+        if (v3_is_zero(to_light))
+            continue;
+        dir3 l = d3_norm(to_light, 0);
+        if (d3_dot(nrm, l) <= 0)
+            continue; /* no shadow ray */
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        vec3 t2 = v3_sub(s.lights[0].pos, i & 64 ? p_out : p);
+        if (v3_is_zero(t2))
+            continue;
+        real dist;
+        l = d3_norm(t2, &dist);
+        if (dist <= R_EPS_OFFSET)
+            continue;
+        real seg = r_sub(dist, R_EPS_OFFSET);
+        uint32_t self = (uint32_t)1 << a, floor = (uint32_t)1 << pl;
+        uint32_t all = s.occluders[0] & ~self, some = s.occ_of[0][a];
+        if (inside && RT_PLANE_CULL)
+            some |= s.occluders[0] & s.plane_set;
+        assert_true((all & floor) != 0);
+        rt_stats st = {0};
+        int want = rt_occluded(&s, &st, 0, all, &p_out, &l, seg);
+        int got = some ? rt_occluded(&s, &st, 0, some, &p_out, &l, seg) : 0;
+        if (got != want)
+            fail_msg("plane left out: with occ_of %d, with every occluder %d (case %d, radius %g, "
+                     "height %g, elevation %g, inside %d)",
+                     got, want, i, r, h, el, inside);
+        tried++;
+        cut += !(some & floor);
+        floor_blocks += rt_occluded(&s, &st, 0, floor, &p_out, &l, seg);
+    }
+    print_message("plane pairs: %d segments from resting spheres, %d with the floor left out, %d "
+                  "blocked by the floor\n",
+                  tried, cut, floor_blocks);
+    assert_true(tried > n / 4);
+    assert_true(cut > n / 40);
+    assert_true(floor_blocks > n / 2000);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 /* rt_nearest_primary (spheres' l and quick rejection prepared for the camera's eye) finds the
  * same object at the same distance as rt_nearest, for rays from the eye that graze spheres,
  * miss them by a hair or start inside one, and rejects early on many of them. */
@@ -968,6 +1075,7 @@ int main(void)
         cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_primary_tiles),
         cmocka_unit_test(test_mirror_tiles),     cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain), cmocka_unit_test(test_shadow_pairs),
+        cmocka_unit_test(test_plane_pairs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -387,7 +387,26 @@ static real scene_cos_of(real sn)
  * from the light only falls along it) toward the light. Either way B is left out of
  * occ_of[l][A], the same answers (test_shapes: test_shadow_pairs). Every object's own bit is
  * left out of its set (a convex surface never shadows its lit side; rt_light_reach adds it back
- * for a point seen from inside). Planes stay in every other set; a plane receives no such bound.
+ * for a point seen from inside); a plane's own set is the light's occluders but itself.
+ *
+ * A plane P (stored unit normal N) is left out of sphere A's set (RT_PLANE_CULL) when the
+ * light is above A's centre, w = -(C_A . N) >= 0, D_A < 128 and H_u (r + R_EPS_OFFSET) <
+ * (h - 2 delta) D_A: h is the centre's height above P, H_u >= H = sqrt(D_A^2 - w^2) the
+ * light's distance from the normal through c_A (2 LSB added to the rounded root). Then h >
+ * 2 delta, and the light is over 2 delta above P. If r <= delta, A clears P by more than
+ * delta: every p_out of A lies above P. Otherwise a point lit from outside (outward normal n,
+ * n . l > 0 as rt_light_reach casts) has n . (L - c_A) > r - delta > 0 (p within delta of
+ * the surface, d's rounding times D_A far below delta). With a = n . N, n . (L - c_A) <= a w +
+ * sqrt(1 - a^2) H, increasing in a for a < 0 (w >= 0), and <= 0 at a = -a0, a0 = (h - delta) /
+ * (r + R_EPS_OFFSET), since H <= a0 D_A gives sqrt(1 - a0^2) H <= a0 w. So every lit point has
+ * a > -a0, and p_out = p + R_EPS_OFFSET n is above P by more than h - a0 (r + R_EPS_OFFSET)
+ * - (its error) > 0; the segment's end, within 2 R_EPS_OFFSET plus d's rounding of the light
+ * (from p_out, or aimed from it for near lights), is above P too: the segment never reaches P,
+ * and the plane test (num < 0, and -num < tmax |den| to within a few LSB) misses. The second
+ * delta leaves delta D_A of slack in the comparison, above the products' rounding and H's
+ * error from w's (at most sqrt(2 D_A dw), dw a few LSB plus D_A times the normal's length
+ * error: below delta for D_A < 128 in each build). A point seen from inside (p_out inside A,
+ * which may touch P) gets the planes back from rt_light_reach. test_shapes: test_plane_pairs.
  * Distances within the scene (below 30000) and sines: the sums are in range (r_add_in). Once per
  * frame: compiled for size. */
 static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int l,
@@ -410,8 +429,18 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
             for (int b = 0; b < s->nobjects; b++) {
                 const rt_object *ob = &s->objects[b];
                 vec3 vb = v3_sub_in(ob->center, lp);
-                if (b == a || ob->kind != RT_SPHERE)
+                if (b == a || ob->kind != RT_SPHERE) {
+#if RT_PLANE_CULL
+                    /* a plane below A, the light above both (see above) */
+                    real wn = r_neg_in(v3_dot_d_in(va, ob->normal));
+                    real k = r_add_in(scene_side(ob, oa->center), r_neg_in(r_muli(delta, 2)));
+                    real hu = r_add_in(r_sqrt_w(w_sub(da2, w_sq(wn))), r_muli(R_LSB, 2));
+                    if (b != a && wn >= 0 && da < R(128.0) &&
+                        r_mul_in(hu, r_add_in(oa->radius, R_EPS_OFFSET)) < r_mul_in(k, da))
+                        occ &= ~((uint32_t)1 << b);
+#endif
                     continue;
+                }
                 real db = r_sqrt_w(w_len2(vb)), sb = cone[b];
                 real m = r_add_in(R(0.0009765625), r_shr(r_add_in(db, ob->radius), 12));
                 wide dot = w_add(w_add(w_mul(va.x, vb.x), w_mul(va.y, vb.y)), w_mul(va.z, vb.z));

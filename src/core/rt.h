@@ -301,6 +301,13 @@ enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE, RT_MODE_PROBE };
 #define RT_COMPILED_PROBE 1
 #endif
 
+/* Do the per-object occluder sets leave out a plane that cannot come between a resting
+ * sphere's lit points and the light (scene_shadow_pairs)? Pictures are the same either way;
+ * the intro player (build/intro-*) defines this to 0 to stay within its 64 kB. */
+#ifndef RT_PLANE_CULL
+#define RT_PLANE_CULL 1
+#endif
+
 /* The name of a mode as --mode takes it: "full", "adaptive" or "probe". */
 static inline const char *rt_mode_name(int mode)
 {
@@ -517,8 +524,8 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     if (rt_scene_has(s, RT_FX_SHADOW)) {
         if (RT_SHADOW_SETS) {
             occ = s->occ_of[i][id];
-            if (inside)
-                occ |= s->occluders[i] & ((uint32_t)1 << id);
+            if (inside) /* and the planes: occ_of's plane rule holds for points seen outside */
+                occ |= s->occluders[i] & (((uint32_t)1 << id) | (RT_PLANE_CULL ? s->plane_set : 0));
         } else {
             occ = s->occluders[i];
             if (!inside && !s->forced)
