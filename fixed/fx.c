@@ -260,8 +260,8 @@ static inline unit fx_mul_r(int32_t v, int32_t rl, uint32_t rh, uint64_t half, i
  * [2^58, 3 * 2^60). No square root and no division: with sum = xs 2^-k, xs in [2^62, 2^64)
  * (k = 2 or 4), r = fx_rsqrt64(xs) ~ 2^64 / sqrt(xs), so 1 / |v| = r 2^(k/2) / 2^64 and each
  * component of the unit vector, in Q2.30, is sx r / 2^(34 - k/2) (fx_mul_r), below 2^63 before
- * the shift. Inlined into both callers: fx_norm32's copy (light directions, the most frequent)
- * then has frac = 16 and the call is saved. */
+ * the shift. Inlined into both callers: fx_norm32_to's copy (light directions, the most
+ * frequent) then has frac = 16 and the call is saved. */
 static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz,
                                                                  int s, int frac, real *len)
 {

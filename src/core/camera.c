@@ -109,7 +109,7 @@ VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
     v->mirror_plane = -1;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
-    if (v->eye.x != s->eye_at.x || v->eye.y != s->eye_at.y || v->eye.z != s->eye_at.z)
+    if (!rt_scene_at_eye(s, v->eye))
         return; /* rt_nearest_primary does not serve this view */
     for (int i = 0; i < s->nobjects; i++) {
         real cone = s->eye_cone[i];

@@ -145,7 +145,7 @@ static int probe_primary(const rt_scene *s, const rt_view *v, int x, int y, rt_s
     const dir3 d = pri->d = rt_view_ray(v, x, y);
     const vec3 eye = v->eye;
     pri->t = 0;
-    int id = eye.x == s->eye_at.x && eye.y == s->eye_at.y && eye.z == s->eye_at.z
+    int id = rt_scene_at_eye(s, eye)
         ? rt_nearest_primary(s, d, rt_view_candidates(v, x, y), &pri->t)
         : rt_nearest_but(s, eye, d, R_T_MAX, -1, &pri->t);
     pri->id = id;

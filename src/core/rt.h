@@ -181,6 +181,13 @@ typedef struct rt_scene {
     uint32_t shadow_quad[RT_MAX_LIGHTS][4];
 } rt_scene;
 
+/* Is p the point the scene was prepared for (eye_at), exactly? Only rays from it may use the
+ * per-eye data (eye_l, eye_cull, eye_num: rt_nearest_primary, rt_view_cull). */
+static inline int rt_scene_at_eye(const rt_scene *s, vec3 p)
+{
+    return p.x == s->eye_at.x && p.y == s->eye_at.y && p.z == s->eye_at.z;
+}
+
 /* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
  * power-of-two squares (at least 4 pixels) that keep both counts within it. */
 #define RT_VIEW_TILES 40

@@ -799,8 +799,7 @@ static __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const
     const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
     if (w > SS_SHADOW_MAX || diff != 1u << (2 * li) || (l0 & RT_LIGHTS_HIGHLIGHT) ||
         (m->tex.active && !sm->cell) || !(c->scene->plane_set >> id & 1) ||
-        c->view->eye.x != c->scene->eye_at.x || c->view->eye.y != c->scene->eye_at.y ||
-        c->view->eye.z != c->scene->eye_at.z)
+        !rt_scene_at_eye(c->scene, c->view->eye))
         return 0;
     rt_color dl[2][4]; /* D and L */
     const rt_color *kd[2][4];

@@ -54,7 +54,7 @@ static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d,
     rt_primary *pri = c->pri;
     if (pri->id == RT_PRIMARY_UNKNOWN) {
         const rt_scene *s = c->scene;
-        int prepared = org.x == s->eye_at.x && org.y == s->eye_at.y && org.z == s->eye_at.z;
+        int prepared = rt_scene_at_eye(s, org);
         pri->t = 0;
         pri->id = prepared ? rt_nearest_primary(s, d, c->primary_cand, &pri->t)
                            : rt_nearest_but(s, org, d, R_T_MAX, -1, &pri->t);
@@ -348,7 +348,7 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                                                               rt_stats *stats, rt_sample *out,
                                                               rt_primary *pri)
 {
-    int at_eye = v->eye.x == s->eye_at.x && v->eye.y == s->eye_at.y && v->eye.z == s->eye_at.z;
+    int at_eye = rt_scene_at_eye(s, v->eye);
     int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
     /* adaptive and probe mode, from the prepared eye (the primary hit as ss_cells finds it
      * again, with rt_nearest_primary; trace_first finds it so too) */
