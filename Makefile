@@ -15,6 +15,8 @@
 #                   (QEMU): docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
+#   make bench-modes      full, adaptive and probe mode in exact instruction counts: callgrind on
+#                   both desktop builds (whole run and tracing), QEMU icount on the ARM926
 #   make scene-programs   compile each scene into its own program; code size; same frames
 #   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
@@ -102,7 +104,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects scene-programs stress clean distclean setup san \
+.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -444,6 +446,10 @@ bench-subsample: setup
 bench-effects: setup
 	@$(MAKE) --no-print-directory all
 	@tests/bench_effects.sh
+
+bench-modes: setup-test setup-arm
+	@$(MAKE) --no-print-directory all $(ARM_ELFS)
+	@tests/bench_modes.sh
 
 STRESS_RAYS ?= 20000000
 stress: setup

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# bench_modes.sh: what each mode (full, adaptive, probe) costs in exact instruction counts, on the desktop (callgrind) and on the ARM926 (QEMU icount) (make bench-modes).
+# Wall-clock times on a shared machine are too noisy for a 1% question such as "is probe mode 3x
+# cheaper than full mode?" (docs/probe.md); instruction counts are exact and repeatable. For each
+# build it runs `render --frames RANGE --step STEP --threads 1 --checksum --mode M` under
+# callgrind and prints the whole run's instructions and the tracing's own (frame_render and what
+# it calls: the frames' pixels, without start-up, scene evaluation and the checksum), then the
+# same frames on the board (platform/arm/qemu.sh bench fixed, the fixed image, instructions per
+# frame). Ratios are full / mode, taken in this one run.
+# Usage: tests/bench_modes.sh [FIRST LAST STEP]   (default 0 1200 100: issue 18's 13 frames)
+#        BOARD=0 skips the board; MODES="full probe" chooses the modes.
+set -eu
+cd "$(dirname "$0")/.."
+first=${1:-0} last=${2:-1200} step=${3:-100}
+modes=${MODES:-full adaptive probe}
+for m in $modes; do
+  case $m in full | adaptive | probe) ;; *)
+    echo "bench_modes.sh: MODES: '$m' is not a mode (full, adaptive or probe)" >&2
+    exit 2
+    ;;
+  esac
+done
+command -v valgrind >/dev/null || {
+  echo "bench_modes.sh: valgrind is missing (./setup.sh --test installs it)" >&2
+  exit 2
+}
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+# callgrind's total and frame_render's inclusive count, from one profile
+counts() {
+  local total tracing
+  total=$(callgrind_annotate "$1" 2>/dev/null | sed -n 's/^ *\([0-9,]*\) .*PROGRAM TOTALS.*/\1/p' | tr -d ,)
+  tracing=$(callgrind_annotate --inclusive=yes "$1" 2>/dev/null |
+              sed -n 's/^ *\([0-9,]*\) .*:frame_render \[.*/\1/p' | head -1 | tr -d ,)
+  echo "${total:-0} ${tracing:-0}"
+}
+
+echo "bench-modes: intro frames $first..$last step $step, 320x240, default settings, one thread"
+printf '%-22s %-9s %15s %9s %15s %9s\n' where mode instructions x_full tracing x_full
+for real in fixed float; do
+  declare -A tot=() trc=()
+  for m in $modes; do
+    echo "bench-modes: rt-$real --mode $m under callgrind..." >&2
+    valgrind --tool=callgrind --callgrind-out-file="$out/cg.$real.$m" "build/rt-$real" render \
+      --frames "$first-$last" --step "$step" --threads 1 --checksum --mode "$m" >/dev/null 2>"$out/log"
+    read -r tot[$m] trc[$m] <<<"$(counts "$out/cg.$real.$m")"
+  done
+  for m in $modes; do
+    awk -v w="x86-64 rt-$real" -v m="$m" -v t="${tot[$m]}" -v r="${trc[$m]}" \
+      -v ft="${tot[full]:-0}" -v fr="${trc[full]:-0}" 'BEGIN {
+        xt = ft > 0 ? sprintf("%.3f", ft / t) : "-"; xr = fr > 0 ? sprintf("%.3f", fr / r) : "-"
+        printf "%-22s %-9s %15.0f %9s %15.0f %9s\n", w, m, t, xt, r, xr }'
+  done
+  unset tot trc
+done
+if [ "${BOARD:-1}" != 0 ]; then
+  declare -A mean=() worst=()
+  for m in $modes; do
+    echo "bench-modes: the ARM926 board, --mode $m..." >&2
+    platform/arm/qemu.sh bench fixed --mode "$m" "$first" "$last" "$step" >"$out/board.$m" 2>&1 || {
+      echo "bench_modes.sh: the board run for --mode $m failed:" >&2
+      tail -5 "$out/board.$m" >&2
+      exit 1
+    }
+    mean[$m]=$(sed -n 's/^frames=[0-9]* mean=//p' "$out/board.$m")
+    worst[$m]=$(sed -n 's/^worst=//p' "$out/board.$m")
+  done
+  printf '%-22s %-9s %15s %9s %15s %9s\n' where mode mean x_full worst x_full
+  for m in $modes; do
+    awk -v m="$m" -v t="${mean[$m]}" -v w="${worst[$m]}" -v ft="${mean[full]:-0}" \
+      -v fw="${worst[full]:-0}" 'BEGIN {
+        xt = ft > 0 ? sprintf("%.3f", ft / t) : "-"; xw = fw > 0 ? sprintf("%.3f", fw / w) : "-"
+        printf "%-22s %-9s %15.0f %9s %15.0f %9s\n", "ARM926 fixed image", m, t, xt, w, xw }'
+  done
+fi
+echo "x86-64: instructions of the whole run and of the tracing alone (frame_render, inclusive), all frames;"
+echo "ARM926: instructions a frame (QEMU icount), mean and worst frame; x_full: full / this"
