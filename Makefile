@@ -448,7 +448,7 @@ bench-effects: setup
 	@tests/bench_effects.sh
 
 bench-modes: setup-test setup-arm
-	@$(MAKE) --no-print-directory all $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
 	@tests/bench_modes.sh
 
 STRESS_RAYS ?= 20000000
