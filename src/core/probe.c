@@ -174,11 +174,13 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
      * (an edge of at most RT_PROBE_ONE_SPAN pixels); where the colour depends on nothing the
      * record misses (f is not opaque: f's record is the point's, and f is on no noise texture,
      * having its primary object); and where the ends' contributions agree. A light f has unlit
-     * is tested at the point on edges longer than 2 pixels (probe_lit); on an edge of 2, the
-     * point's neighbours on either side, a pixel away, are what the test would look between. */
+     * is tested at the point (probe_lit), but on an edge of 2 pixels whose ends both match: the
+     * point's neighbours a pixel away on either side, on its object and cell and unlit, are
+     * what the test would look between. (Where one end is another object, a shadow's edge can
+     * meet the outline between them: tested.) */
     if ((m != 3u && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
         (m == 3u && !agreed && !probe_agree(a, b, thr8)) ||
-        (span > 2 && probe_lit(s, v, st, pri, f)))
+        ((m != 3u || span > 2) && probe_lit(s, v, st, pri, f)))
         return 0;
 
     /* The record is f's, the colour interpolated from the matching ends'. f's other tone's

@@ -647,8 +647,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
  * casts no secondary ray, or the ends have one record), both match, or one and span <=
  * RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise texture, no texture
  * beyond the primary hit, no highlight); the ends' contributions agree within thr8 (1/255
- * steps) where both match; and, on an edge longer than 2 pixels, every light the first
- * matching end has unlit leaves the point unlit too (its facing test, n . l and shadow ray,
+ * steps) where both match; and (but on an edge of 2 pixels whose ends both match) every
+ * light the first matching end has unlit leaves the point unlit too (its facing test, n . l and shadow ray,
  * counted in st->rays_shadow: a lit wedge between shadows neither end sees). *out then gets the
  * first matching end's record, the colour interpolated from the matching ends alone (or the
  * one's colour), that end's other tone's colour as its own (rt_sample.alt, alt_known), and
