@@ -756,6 +756,135 @@ static void test_probe_reflected_edge(void **state)
     check_probe(&s, 0, 64, 90, "probe: reflected edge", 1); /* what adaptive mode misses too */
 }
 
+/* Pixel (x, y) traced as probe mode shades it (its record, its flags: rt_probe_opaque). */
+static rt_sample probe_shade(const rt_scene *s, const rt_view *v, int x, int y)
+{
+    const rt_params p = {
+        .depth = s->depth, .mode = RT_MODE_PROBE, .grid = 8, .threshold = TS_THRESHOLD};
+    const rt_probe_masks mk = rt_probe_masks_of(s);
+    rt_stats st = {0};
+    rt_sample sm;
+    rt_trace_pixel(s, v, &p, x, y, &st, &sm);
+    sm.flags = (uint8_t)rt_probe_opaque(&mk, &sm);
+    return sm;
+}
+
+/* rt_probe_point on one edge, against what full shades give. The straight edge (flat-shaded
+ * floor and wall): an edge of 4 pixels across the outline gives its middle the record and
+ * colour of the end it matches (its own full shade's), one of 8 is not probed (-1), and an
+ * edge with both ends on one side gives the ends' colour mixed. The shadow scene: a lit point
+ * between two ends in the shadow is shaded (0, a shadow ray cast) on an edge of 4 pixels, and on
+ * one of 2 takes the ends' record with no ray. The mirror floor: ends whose ray trees differ are
+ * not probed (-1). */
+static void test_probe_point_edge(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    scene_base(&s);
+    s.nlights = 0;
+    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int mw = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.3, 0.8), .ambient = from_d(1)});
+    add_floor(&s, mf);
+    rt_object *o = &s.objects[s.nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
+    o->axis = vd(1, 0, 0.4);
+    s.camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
+    rt_scene_prepare(&s);
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    const int thr8 = r_to_byte(TS_THRESHOLD), y = H / 2;
+    const real half = r_from_ratio(1, 2);
+    int x0 = -1, flat_ok = 0;
+    for (int x = 0; x + 8 < W && x0 < 0; x++) {
+        rt_sample a = probe_shade(&s, &v, x, y), b = probe_shade(&s, &v, x + 4, y);
+        if (a.hits[0].object != b.hits[0].object)
+            x0 = x;
+    }
+    assert_true(x0 >= 0);
+    {
+        rt_sample a = probe_shade(&s, &v, x0, y), b = probe_shade(&s, &v, x0 + 4, y),
+                  m = probe_shade(&s, &v, x0 + 2, y), out;
+        rt_stats st = {0};
+        rt_primary pri;
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 2, y, &a, &b, half, 4, &pri, &out),
+                         1);
+        assert_int_equal(st.probes, 1);
+        assert_true(rt_probe_same(&out, &m));
+        assert_int_equal(out.flags, RT_SAMPLE_PROBED);
+        assert_int_equal(rt_color_pixel(out.color), rt_color_pixel(m.color));
+        rt_sample b8 = probe_shade(&s, &v, x0 + 8, y);
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 4, y, &a, &b8, half, 8, &pri, &out),
+                         -1);
+        assert_int_equal(st.probes, 1); /* not probed */
+    }
+    for (int x = 0; x + 4 < W; x++) { /* an edge on one side: the mixed colour */
+        rt_sample a = probe_shade(&s, &v, x, y), b = probe_shade(&s, &v, x + 4, y),
+                  m = probe_shade(&s, &v, x + 2, y), out;
+        if (!rt_probe_same(&a, &b) || !rt_probe_same(&a, &m))
+            continue;
+        rt_stats st = {0};
+        rt_primary pri;
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x + 2, y, &a, &b, half, 4, &pri, &out),
+                         1);
+        assert_int_equal(rt_color_pixel(out.color), rt_color_pixel(m.color)); /* flat */
+        flat_ok = 1;
+        break;
+    }
+    assert_true(flat_ok);
+
+    /* a lit point between two ends in a shadow (the same floor record) */
+    shadow_scene(&s);
+    rt_scene_prepare(&s);
+    rt_view_init(&v, &s.camera, W, H);
+    int lit = -1, dark = -1;
+    for (int p = 0; p < W * H && (lit < 0 || dark < 0); p++) {
+        rt_sample m = probe_shade(&s, &v, p % W, p / W);
+        if (m.hits[0].object != 0 || m.nhits != 1)
+            continue;
+        if (rt_light_state(&m, 0) == 1 && lit < 0)
+            lit = p;
+        if (rt_light_state(&m, 0) == 0 && dark < 0)
+            dark = p;
+    }
+    assert_true(lit >= 0 && dark >= 0);
+    {
+        rt_sample a = probe_shade(&s, &v, dark % W, dark / W), out;
+        rt_stats st = {0};
+        rt_primary pri;
+        assert_int_equal(
+            rt_probe_point(&s, &v, &st, thr8, lit % W, lit / W, &a, &a, half, 4, &pri, &out), 0);
+        assert_true(st.rays_shadow > 0); /* the light test found the light */
+        assert_int_equal(pri.id, 0);     /* the primary hit, for the full shade */
+        st = (rt_stats){0};
+        assert_int_equal(
+            rt_probe_point(&s, &v, &st, thr8, lit % W, lit / W, &a, &a, half, 2, &pri, &out), 1);
+        assert_int_equal(st.rays_shadow, 0);
+        assert_true(rt_probe_same(&out, &a));
+    }
+
+    /* ends on a mirror floor whose reflections differ: no probe */
+    mirror_scene(&s);
+    s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
+    rt_scene_prepare(&s);
+    rt_view_init(&v, &s.camera, W, H);
+    int found = 0;
+    for (int p = 0; p + 4 < W * H && !found; p++) {
+        if (p % W + 4 >= W)
+            continue;
+        rt_sample a = probe_shade(&s, &v, p % W, p / W), b = probe_shade(&s, &v, p % W + 4, p / W),
+                  out;
+        if (a.hits[0].object != 0 || b.hits[0].object != 0 || a.nhits < 2 || b.nhits < 2 ||
+            a.hits[1].object == b.hits[1].object || a.lights != b.lights)
+            continue;
+        rt_stats st = {0};
+        rt_primary pri;
+        assert_int_equal(
+            rt_probe_point(&s, &v, &st, thr8, p % W + 2, p / W, &a, &b, half, 4, &pri, &out), -1);
+        found = 1;
+    }
+    assert_true(found);
+}
+
 /* Every frame size, multiple of the grid or not, down to a single pixel: every pixel written,
  * the corners of the grid traced, and a flat picture comes out exactly as in full mode. */
 static void test_sizes(void **state)
@@ -1249,6 +1378,7 @@ int main(void)
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),
         cmocka_unit_test(test_probe_reflected_edge),
+        cmocka_unit_test(test_probe_point_edge),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

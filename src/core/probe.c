@@ -1,58 +1,27 @@
 /* probe.c: probe mode: a point that splitting a square adds is probed (its primary hit and checker cell, no shading) and shaded in full only where its neighbours cannot give its colour. */
 #include "rt.h"
 
-/* Do the samples k[i] with bit i set in `set` (all of one record) have contributions within
- * thr8 of each other at every stored node? */
-static int probe_agree(int n, const rt_sample *const k[], unsigned set, int thr8)
+/* Do samples a and b (of one record) have contributions within thr8 of each other at every
+ * stored node? */
+static int probe_agree(const rt_sample *a, const rt_sample *b, int thr8)
 {
-    const rt_sample *g[4];
-    int m = 0;
-    for (int i = 0; i < n; i++)
-        if (set & (1u << i))
-            g[m++] = k[i];
-    if (m == 2) { /* the common case: one difference per channel */
-        const rt_sample *a = g[0], *b = g[1];
-        int nodes = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
-        for (int j = 0; j < nodes; j++)
-            for (int ch = 0; ch < 3; ch++) {
-                int d = a->hits[j].contrib[ch] - b->hits[j].contrib[ch];
-                if (d > thr8 || d < -thr8)
-                    return 0;
-            }
-        return 1;
-    }
-    int nodes = g[0]->nhits < RT_SAMPLE_MAX_HITS ? g[0]->nhits : RT_SAMPLE_MAX_HITS;
+    int nodes = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
     for (int j = 0; j < nodes; j++)
         for (int ch = 0; ch < 3; ch++) {
-            int lo = g[0]->hits[j].contrib[ch], hi = lo;
-            for (int i = 1; i < m; i++) {
-                int v = g[i]->hits[j].contrib[ch];
-                lo = v < lo ? v : lo;
-                hi = v > hi ? v : hi;
-            }
-            if (hi - lo > thr8)
+            int d = a->hits[j].contrib[ch] - b->hits[j].contrib[ch];
+            if (d > thr8 || d < -thr8)
                 return 0;
         }
     return 1;
 }
 
 /* The colour at fraction t from *a to *b: r_lerp of each channel, in its in-range form (the
- * same values: colours and t lie in [0, 1]). Out of line: the mixing below calls it rather than
- * repeating it (code size). */
-static __attribute__((noinline)) rt_color probe_lerp(const rt_color *a, const rt_color *b, real t)
+ * same values: colours and t lie in [0, 1]). */
+static rt_color probe_lerp(const rt_color *a, const rt_color *b, real t)
 {
     return v3(r_add_in(a->x, r_mul_in(r_add_in(b->x, r_neg_in(a->x)), t)),
               r_add_in(a->y, r_mul_in(r_add_in(b->y, r_neg_in(a->y)), t)),
               r_add_in(a->z, r_mul_in(r_add_in(b->z, r_neg_in(a->z)), t)));
-}
-
-/* The colour at fraction t from *a to *b, from those of them in `m` alone (bit 0: a, bit 1: b;
- * the other is not read). */
-static inline __attribute__((always_inline)) rt_color probe_mix(const rt_color *a,
-                                                                const rt_color *b, unsigned m,
-                                                                real t)
-{
-    return m == 1 ? *a : m == 2 ? *b : probe_lerp(a, b, t);
 }
 
 /* Do a and b have the same ray tree below the primary hit (count, objects and levels)? */
@@ -112,30 +81,6 @@ unsigned rt_probe_opaque(const rt_probe_masks *mk, const rt_sample *r)
     return 0;
 }
 
-/* The lowest bit set in a non-empty set. */
-static int probe_first(unsigned set)
-{
-    int i = 0;
-    while (!(set & (1u << i)))
-        i++;
-    return i;
-}
-
-/* The colour at (tx, ty) in a context of n samples k[] from those in m alone: along x within
- * each row of the context, then between the rows (a row with one of them gives its colour). */
-static rt_color probe_interp(int n, const rt_sample *const k[], unsigned m, real tx, real ty)
-{
-    unsigned top = m & 3, bot = m >> 2 & 3;
-    rt_color a = v3(0, 0, 0), b = a;
-    if (top)
-        a = probe_mix(&k[0]->color, &k[1]->color, top, tx);
-    if (n == 2)
-        return a;
-    if (bot)
-        b = probe_mix(&k[2]->color, &k[3]->color, bot, tx);
-    return probe_mix(&a, &b, (top ? 1u : 0) | (bot ? 2u : 0), ty);
-}
-
 /* The primary hit of pixel (x, y) as its full shade finds it (the same ray and nearest-hit test
  * as trace_first) into *pri, and the checker cell there into *cell (0: none). Returns the object
  * as a record holds it (RT_NO_OBJECT: none). */
@@ -184,40 +129,25 @@ static int probe_lit(const rt_scene *s, const rt_view *v, rt_stats *st, const rt
     return 0;
 }
 
-int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y, int n,
-                   const rt_sample *const k[], enum rt_split_reason why, real tx, real ty, int span,
-                   rt_primary *pri, rt_sample *out)
+int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y,
+                   const rt_sample *a, const rt_sample *b, real t, int span, rt_primary *pri,
+                   rt_sample *out)
 {
     pri->id = RT_PRIMARY_UNKNOWN;
-    /* 0. No probe where it cannot pay: where every context sample is opaque (rt_probe_opaque),
-     * or all have one record whose contributions disagree (the four corners of a square split
-     * for its contributions alone), a point with a context sample's record gets its verdict and
-     * one with a new record is shaded. Where the context disagrees on a light, the point's light
-     * states would take a shadow ray per light, and where every context sample casts secondary
-     * rays (and an edge's two ends differ in them), its ray tree would take those rays again:
-     * its full shade but for the colour, so the probe would cost more than it saves. */
-    unsigned opaque = k[0]->flags & k[1]->flags, lights = 0, flat = 0, agreed = 0;
-    for (int i = 0; i < n; i++) {
-        opaque &= k[i]->flags;
-        lights |= k[i]->lights ^ k[0]->lights;
-        flat |= k[i]->nhits == 1;
-    }
-    if ((opaque & RT_SAMPLE_OPAQUE) || lights)
+    /* 0. No probe where it cannot pay. Where the ends have one record whose contributions
+     * disagree, a point with their record gets their verdict and one with a new record is
+     * shaded. Where both ends cast secondary rays (and differ in them), the point's ray tree
+     * would take those rays again: its full shade but for the colour (a tree probe measured
+     * dearer than the shades it saved, docs/probe.md). On an edge longer than
+     * RT_PROBE_ONE_SPAN whose ends differ in primary object or cell, the point's record could
+     * be one end's at most, not enough there. (The caller has left out the edges whose ends
+     * are both opaque or disagree on a light: ss_probe_edge.) */
+    const int agreed = rt_probe_same(a, b); /* a point matching both needs no more test */
+    if (agreed ? !probe_agree(a, b, thr8)
+               : (a->nhits != 1 && b->nhits != 1) ||
+                (span > RT_PROBE_ONE_SPAN &&
+                 (a->hits[0].object != b->hits[0].object || a->cell != b->cell)))
         return -1;
-    if (n == 4) {
-        if (why == RT_SPLIT_CONTRIB || !flat)
-            return -1;
-    } else if (rt_probe_same(k[0], k[1])) {
-        if (!probe_agree(2, k, 3u, thr8))
-            return -1;
-        agreed = 1; /* the edge's ends agree: a point matching both needs no more test */
-    } else if (!flat ||
-               (span > RT_PROBE_ONE_SPAN &&
-                (k[0]->hits[0].object != k[1]->hits[0].object || k[0]->cell != k[1]->cell))) {
-        /* Nor on an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object or
-         * cell: the point's record could then be one end's at most, not enough there. */
-        return -1;
-    }
 
     /* 1. The primary hit and its checker cell; a noise texture there ends the probe. The
      * primary ray and hit stay in *pri for the full shade. */
@@ -226,36 +156,39 @@ int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, 
     int id = probe_primary(s, v, x, y, st, pri, &cell);
     if (probe_noise(s, id))
         return 0;
-    unsigned m = 0;
-    for (int i = n - 1; i >= 0; i--)
-        m = m << 1 | (k[i]->hits[0].object == id && k[i]->cell == cell ? 1u : 0);
+    const unsigned m = (a->hits[0].object == id && a->cell == cell ? 1u : 0) |
+        (b->hits[0].object == id && b->cell == cell ? 2u : 0);
     if (!m)
         return 0; /* something new */
 
-    /* 2. The context agrees on every light: the matching sample's light states are the point's,
-     * once a light it has unlit is found unlit at the point too (probe_lit, below: else a lit
-     * wedge between shadows lies there, and the point is shaded).
-     * Its ray tree is the matching sample's where that casts no secondary ray, or on an edge
-     * whose ends have one record; elsewhere it would take a probe of its own: shaded. */
-    const rt_sample *f = k[probe_first(m)];
-    if (f->nhits > 1 && !(n == 2 && m == 3u && probe_same_tree(k[0], k[1])))
+    /* 2. The ends agree on every light: the matching end's light states are the point's, once
+     * a light it has unlit is found unlit at the point too (probe_lit, below: else a lit wedge
+     * between shadows lies there, and the point is shaded).
+     * Its ray tree is the matching end's where that casts no secondary ray, or where the two
+     * ends have one record; elsewhere it would take a probe of its own: shaded. */
+    const rt_sample *f = m & 1 ? a : b;
+    if (f->nhits > 1 && !agreed)
         return 0;
 
-    /* 3. Interpolation stands in where two samples or more have the point's record, or one
-     * next to it (at most RT_PROBE_ONE_SPAN pixels across the context); where the colour
-     * depends on nothing the record misses (f is not opaque: f's record is the point's, and f
-     * is on no noise texture, having its primary object); and where those samples'
-     * contributions agree. */
-    int single = !(m & (m - 1));
-    if ((single && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
-        (!single && !agreed && !probe_agree(n, k, m, thr8)) || probe_lit(s, v, st, pri, f))
+    /* 3. Interpolation stands in where both ends have the point's record, or one next to it
+     * (an edge of at most RT_PROBE_ONE_SPAN pixels); where the colour depends on nothing the
+     * record misses (f is not opaque: f's record is the point's, and f is on no noise texture,
+     * having its primary object); and where the ends' contributions agree. A light f has unlit
+     * is tested at the point (probe_lit), but on an edge of 2 pixels whose ends both match: the
+     * point's neighbours a pixel away on either side, on its object and cell and unlit, are
+     * what the test would look between. (Where one end is another object, a shadow's edge can
+     * meet the outline between them: tested.) */
+    if ((m != 3u && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
+        (m == 3u && !agreed && !probe_agree(a, b, thr8)) ||
+        ((m != 3u || span > 2) && probe_lit(s, v, st, pri, f)))
         return 0;
 
-    /* The record is f's, the colour interpolated from the matching samples'. f's other tone's
+    /* The record is f's, the colour interpolated from the matching ends'. f's other tone's
      * colour of a two-tone checker (rt_sample.alt), where it has one, stands for the point's:
      * the point can then be a corner of a texture square (ss_cells) as f can. */
     *out = *f;
-    out->color = probe_interp(n, k, m, tx, ty);
+    if (m == 3u)
+        out->color = probe_lerp(&a->color, &b->color, t);
     out->flags = RT_SAMPLE_PROBED;
     return 1;
 }

@@ -635,35 +635,30 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
                         int nbands, enum rt_band_memory mem);
 
-/* Probe mode (probe.c), for a point (x, y) that splitting a square adds, with its n context
- * samples k[]: the ends of the edge it lies on (n = 2, the point at fraction tx from k[0] to
- * k[1]) or the corners of the square it is the centre of (n = 4: (0, 0), (1, 0), (0, 1),
- * (1, 1), the point at (tx, ty); `why` is rt_corners_differ's verdict on them); `span` is the
- * context's size in pixels (the edge's length, the square's larger side).
- * Returns -1 without a probe where one cannot pay (every context sample opaque, the context
- * disagreeing on a light, ray trees a probe would have to trace, or, for a centre, a square
- * split for its contributions alone; an edge longer than RT_PROBE_ONE_SPAN whose ends differ
- * in primary object or cell; an edge whose ends have one record but contributions that
- * disagree): the point is to be shaded in full. Else probes the point's primary hit and
- * checker cell (as its full shade finds them) and returns 1 when its colour can be
- * reconstructed: the context samples with its primary object and cell (the matching ones)
- * give its record (the context agrees on every light; the first of them casts no secondary
- * ray, or the context is an edge whose ends have one record), two or more of them match, or
- * one and span <= RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise
- * texture, no texture beyond the primary hit, no highlight); and the matching samples'
- * contributions agree within thr8 (1/255 steps); and every light the first matching sample
- * has unlit leaves the point unlit too (its facing test, n . l and shadow ray, counted in
- * st->rays_shadow: a lit wedge between shadows no context sample sees). *out then gets the first matching sample's
- * record, the colour interpolated from the matching samples alone (along x within each row of
- * the context, then between the rows; a row with one matching sample gives its colour), the
- * first matching sample's other tone's colour as its own (rt_sample.alt, alt_known), and flags
- * RT_SAMPLE_PROBED. Returns 0 when the probed point must be shaded in full (*out untouched):
- * *pri then holds its primary ray and hit (rt_trace_pixel_from). Counts probes in
+/* Probe mode (probe.c), for a point (x, y) that splitting a square adds in the middle of one
+ * of its edges, from sample a to sample b (the point at fraction t from a to b; span: the
+ * edge's length in pixels), ends that are not both opaque and agree on every light.
+ * Returns -1 without a probe where one cannot pay (ends with one record but contributions
+ * that disagree; ends that differ and both cast secondary rays, whose trees a probe would have
+ * to trace; an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object or
+ * cell): the point is to be shaded in full. Else probes the point's primary hit and checker
+ * cell (as its full shade finds them) and returns 1 when its colour can be reconstructed: the
+ * ends with its primary object and cell (the matching ones) give its record (the first of them
+ * casts no secondary ray, or the ends have one record), both match, or one and span <=
+ * RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise texture, no texture
+ * beyond the primary hit, no highlight); the ends' contributions agree within thr8 (1/255
+ * steps) where both match; and (but on an edge of 2 pixels whose ends both match) every
+ * light the first matching end has unlit leaves the point unlit too (its facing test, n . l and shadow ray,
+ * counted in st->rays_shadow: a lit wedge between shadows neither end sees). *out then gets the
+ * first matching end's record, the colour interpolated from the matching ends alone (or the
+ * one's colour), that end's other tone's colour as its own (rt_sample.alt, alt_known), and
+ * flags RT_SAMPLE_PROBED. Returns 0 when the probed point must be shaded in full (*out
+ * untouched): *pri then holds its primary ray and hit (rt_trace_pixel_from). Counts probes in
  * st->probes. */
 #define RT_PROBE_ONE_SPAN 4
-int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y, int n,
-                   const rt_sample *const k[], enum rt_split_reason why, real tx, real ty, int span,
-                   rt_primary *pri, rt_sample *out);
+int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y,
+                   const rt_sample *a, const rt_sample *b, real t, int span, rt_primary *pri,
+                   rt_sample *out);
 
 /* Do two records have the same shape: primary object and cell, light states, and the objects
  * and levels of the ray tree (what rt_corners_differ compares before contributions)? */

@@ -402,18 +402,15 @@ static inline void ss_need(ss_ctx *c, int x, int y, rt_sample *sm)
         ss_trace(c, x, y, sm);
 }
 
-/* Probe mode: the point (x, y) a split adds, not decided yet, with its context k
- * (rt_probe_point); probed, and shaded in full only when rt_probe_point cannot give its
- * colour. */
-static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, int n,
-                                                   const rt_sample *const k[],
-                                                   enum rt_split_reason why, real tx, real ty,
-                                                   int span)
+/* Probe mode: the point (x, y) a split adds in the middle of an edge from a to b (at fraction
+ * t, span pixels long), not decided yet (rt_probe_point); probed, and shaded in full only when
+ * rt_probe_point cannot give its colour. */
+static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, const rt_sample *a,
+                                                   const rt_sample *b, real t, int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
     rt_primary pri;
-    int r = rt_probe_point(c->scene, c->view, c->stats, c->thr8, x, y, n, k, why, tx, ty, span,
-                           &pri, sm);
+    int r = rt_probe_point(c->scene, c->view, c->stats, c->thr8, x, y, a, b, t, span, &pri, sm);
     if (r > 0) {
         if (c->traced)
             __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
@@ -430,36 +427,24 @@ static inline int ss_probe_edge(const rt_sample *a, const rt_sample *b)
 }
 
 /* Probe mode: the points splitting the square (x0, y0, w, h) into nx by ny adds (k: its
- * corners): the middles of the edges it halves, each against the ends of its edge, and the
- * centre against the four corners. A point some square added before is kept: it got its record
- * from the same context (the ends of its edge), so the frame does not depend on the order
- * squares are visited in. */
+ * corners) in the middles of the edges it halves, each against the ends of its edge. (Not its
+ * centre: a probe there against the four corners measured dearer on the board than the shades
+ * it saved, docs/probe.md; it is shaded where the squares below need it.) A point some square
+ * added before is kept: it got its record from the same context (the ends of its edge), so the
+ * frame does not depend on the order squares are visited in. */
 static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, int w, int h,
-                                                     int nx, int ny, const rt_sample *const k[4],
-                                                     enum rt_split_reason why)
+                                                     int nx, int ny, const rt_sample *const k[4])
 {
     if (k[0]->flags & k[1]->flags & k[2]->flags & k[3]->flags & RT_SAMPLE_OPAQUE)
-        return; /* every context opaque: no point is probed (rt_probe_point) */
-    real tx = c->wt[w][w / 2], ty = c->wt[h][h / 2];
-    int xm = x0 + w / 2, ym = y0 + h / 2;
+        return; /* every end opaque: no point is probed (ss_probe_edge) */
     /* the lattice at (x0, y0): a point already decided (nhits) is kept */
     const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
-    /* rt_probe_point's first tests, on the calls they would end: an edge whose ends are both
-     * opaque or disagree on a light; a centre whose corners disagree on a light or do not differ
-     * in their primary objects or cells (they then agree on them, or have trees that differ with
-     * no corner casting no secondary ray). */
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
         if (!at[j * h * c->lstride + w / 2].nhits && ss_probe_edge(k[2 * j], k[2 * j + 1]))
-            ss_probe_new(c, xm, y0 + j * h, 2, k + 2 * j, why, tx, 0, w);
-    for (int i = 0; i < 2 && ny == 2; i++) { /* left, right */
-        const rt_sample *kk[2] = {k[i], k[i + 2]};
+            ss_probe_new(c, x0 + w / 2, y0 + j * h, k[2 * j], k[2 * j + 1], c->wt[w][w / 2], w);
+    for (int i = 0; i < 2 && ny == 2; i++) /* left, right: k[0], k[2] and k[1], k[3] */
         if (!at[h / 2 * c->lstride + i * w].nhits && ss_probe_edge(k[i], k[i + 2]))
-            ss_probe_new(c, x0 + i * w, ym, 2, kk, why, ty, 0, h);
-    }
-    const unsigned l = k[0]->lights;
-    if (nx == 2 && ny == 2 && why == RT_SPLIT_OBJECT && k[1]->lights == l && k[2]->lights == l &&
-        k[3]->lights == l && !at[h / 2 * c->lstride + w / 2].nhits)
-        ss_probe_new(c, xm, ym, 4, k, why, tx, ty, w > h ? w : h);
+            ss_probe_new(c, x0 + i * w, y0 + h / 2, k[i], k[i + 2], c->wt[h][h / 2], h);
 }
 
 /* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
@@ -884,7 +869,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             c->split = 1;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
             if (RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE)
-                ss_probe_split(c, x0, y0, w, h, nx, ny, k, why);
+                ss_probe_split(c, x0, y0, w, h, nx, ny, k);
             if (w == 2 && h == 2 && !own) {
                 ss_quad(c, sm, x0, y0);
                 return;
