@@ -67,7 +67,7 @@ static double sphere_oracle(double ox, double oy, double oz, double dx, double d
 static int hit(const rt_object *o, vec3 org, dir3 d, real tmax, double *t)
 {
     real tr;
-    int h = rt_shapes[o->kind].intersect(o, org, d, tmax, &tr);
+    int h = rt_intersect(o, org, d, tmax, &tr);
     *t = h ? to_d(tr) : -1;
     return h;
 }
@@ -280,7 +280,7 @@ static void test_shadow_cull(void **state)
         real seg, t;
         if (!shadow_segment(&s, cx, cy, cz, ux, uy, uz, rq, i & 1, &p_out, &l, &seg))
             continue;
-        int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
+        int want = rt_intersect(o, p_out, l, seg, &t);
         rt_stats st = {0};
         int got = rt_occluded(&s, &st, 0, 1, &p_out, &l, seg);
         if (got != want)
@@ -921,7 +921,7 @@ static void test_mirror_tiles(void **state)
                     tests++;
                     skipped += !(cand & (1u << i));
                     real th;
-                    if (!rt_shapes[RT_SPHERE].intersect(&s.objects[i], p_out, r, R_T_MAX, &th))
+                    if (!rt_intersect(&s.objects[i], p_out, r, R_T_MAX, &th))
                         continue;
                     hits++;
                     if (!(cand & (1u << i)))
@@ -1179,6 +1179,87 @@ static void test_ray_sets(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* A point seen from inside a sphere is in the sphere's own shadow where rt_scene.dark_inside and
+ * dark_r say so: rt_light_reach's shortcut (no normalisation, no shadow ray test) gives what
+ * the full test gives, for points of glass spheres of radius 0.05 to 200 hit from inside (near
+ * the origin and 1500 units out) or off the surface by up to 3 R_EPS_OFFSET either side, lights
+ * far off, just outside the margin and near the surface (aimed from p_out), a floor and a
+ * neighbour among the occluders, in both builds. */
+static void test_dark_inside(void **state)
+{
+    (void)state;
+    static rt_scene s, plain;
+    int n = 60000, tried = 0, dark = 0, lit = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double base = i % 8 == 0 ? rnd(-1500, 1500) : 0;
+        double r = i % 3 == 0 ? rnd(0.05, 0.5) : i % 3 == 1 ? rnd(0.5, 3) : rnd(3, 200);
+        s = (rt_scene){0};
+        s.nobjects = 3;
+        s.nlights = 2;
+        double cx = base + rnd(-5, 5), cy = base + r + rnd(0, 2), cz = base + rnd(-5, 5);
+        s.objects[0] = plane(0, 1, 0, base);
+        s.objects[1] = sphere(cx, cy, cz, r);
+        s.objects[2] = sphere(cx + 2.5 * r + 1, cy, cz, r);
+        s.nmaterials = 1;
+        s.materials[0].ior = R(1.5);
+        s.materials[0].transmit = R(0.85); /* glass: rays get inside */
+        for (int l = 0; l < 2; l++) {
+            double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+            double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+            /* far, just outside the shortcut's margin, or near the surface */
+            double dl = l == 0 ? r + rnd(1, 60) : r + (i & 4 ? rnd(0, 0.05) : rnd(0.0005, 0.004));
+            s.lights[l].pos = vd(cx + ux / un * dl, cy + uy / un * dl, cz + uz / un * dl);
+            s.lights[l].color = v3(R_ONE, R_ONE, R_ONE);
+        }
+        s.camera.eye = vd(base, base + 1000, base);
+        rt_scene_prepare(&s);
+        plain = s;
+        for (int l = 0; l < RT_MAX_LIGHTS; l++)
+            plain.dark_inside[l] = 0;
+        /* a hit on sphere 1 from inside it, as the tracer finds it */
+        double q = rnd(0, 0.9) * r, ox = rnd(-1, 1), oy = rnd(-1, 1), oz = rnd(-1, 1);
+        double on = sqrt(ox * ox + oy * oy + oz * oz) + 1e-9;
+        vec3 org = vd(cx + ox / on * q, cy + oy / on * q, cz + oz / on * q);
+        dir3 d = dirv(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1));
+        real t;
+        vec3 p;
+        dir3 nrm;
+        if (i & 1) { /* or a point off the surface by up to 3 R_EPS_OFFSET, either side */
+            double e = r + rnd(-3, 3) * to_d(R_EPS_OFFSET);
+            p = vd(cx + ox / on * e, cy + oy / on * e, cz + oz / on * e);
+            nrm = d3_neg(rt_sphere_normal(&s.objects[1], &p));
+        } else {
+            if (rt_nearest(&s, org, d, R_T_MAX, &t) != 1)
+                continue;
+            p = v3_along(org, d, t);
+            nrm = rt_sphere_normal(&s.objects[1], &p);
+            if (d3_dot(d, nrm) <= 0)
+                continue; /* not seen from inside */
+            nrm = d3_neg(nrm);
+        }
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        for (int l = 0; l < 2; l++) {
+            rt_stats st = {0}, st_plain = {0};
+            dir3 l1, l2;
+            unit got = rt_light_reach(&s, &st, l, 1, 1, &p, &p_out, nrm, &l1);
+            unit want = rt_light_reach(&plain, &st_plain, l, 1, 1, &p, &p_out, nrm, &l2);
+            if (got != want)
+                fail_msg("light %d at a point seen from inside: %d with the shortcut, %d without "
+                         "(case %d, radius %g)",
+                         l, got, want, i, r);
+            tried++;
+            dark += st.shadow_tests < st_plain.shadow_tests;
+            lit += want != 0;
+        }
+    }
+    print_message("dark inside: %d light tests from inside, %d decided by the shortcut, %d lit\n",
+                  tried, dark, lit);
+    assert_true(tried > n / 2);
+    assert_true(dark > tried / 6);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1189,6 +1270,7 @@ int main(void)
         cmocka_unit_test(test_mirror_tiles),     cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain), cmocka_unit_test(test_shadow_pairs),
         cmocka_unit_test(test_plane_pairs),      cmocka_unit_test(test_ray_sets),
+        cmocka_unit_test(test_dark_inside),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

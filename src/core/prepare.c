@@ -490,8 +490,30 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
  * B is left out only when it comes after every plane in the objects' order: the objects before
  * the last plane are then all tested, with the same tmax at each, and after it rt_nearest_set
  * keeps the strictly nearest sphere hit (ties to the first), so where the search without B
- * finds A it is the search's answer with B (trace_ray searches again otherwise). Once per frame:
- * compiled for size. */
+ * finds A it is the search's answer with B (trace_ray searches again otherwise).
+ *
+ * dark_inside, dark_r (rt_light_reach's shortcut): a point p of A seen from inside (its normal
+ * n turned inward) with p_out = p + R_EPS_OFFSET n, |p_out - c_A| < r - mi exactly (dark_r = r -
+ * mi, mi = 2^-10 + r 2^-(U_LEN_ERR_SHIFT - 4): r 2^-14 fixed and float, r 2^-10 rt-fixed16),
+ * under a light L at D = |L - c_A| > r + ml + 2 LSB (ml = 2 R_EPS_OFFSET + 2^-6 + (D + r)
+ * 2^-(U_LEN_ERR_SHIFT - 8)), A among its occluders: rt_light_reach returns 0 whenever it gets
+ * as far as the shadow ray (or earlier, n . l <= 0). The ray's occluders hold A (seen from
+ * inside, rt_light_reach adds A back); the bound's, the quadrants' and A's own rejections
+ * refuse only segments A's test would miss, so the ray is blocked if A's test (sphere_blocks)
+ * reports the segment from p_out along d (unit to 2^-U_LEN_ERR_SHIFT / 4, toward L from p, or
+ * from p_out for a near light) of length dist - R_EPS_OFFSET (dist within a step of |L - p|, or
+ * |L - p_out|, above R_EPS_OFFSET as L is far outside). With l = c - p_out, |l| < r - mi: tca <=
+ * |l| < r passes both first rejections; |perp|^2 = |l|^2 - tca^2 within a few steps times r
+ * (d's length error times r, and each component's rounding), so a = r^2 - |perp|^2 exceeds
+ * tca^2 by at least 2 r mi - mi^2 less that, and thc - |tca| >= mi / 2 - a few steps: the near
+ * hit is negative, the far one tca + thc positive. The segment's end lies within 2 R_EPS_OFFSET
+ * plus d's error times dist ((D + r) 2^-(U_LEN_ERR_SHIFT - 2)) of L, so outside A by more than
+ * 2^-6 + (D + r) 2^-(U_LEN_ERR_SHIFT - 4): the exit point comes that far before it, and the far
+ * hit as formed is off the exit by thc's error, a's error over 2 thc with thc >= sqrt(r mi):
+ * below 2^-8 in every build (fixed: a few steps times r over sqrt(r^2 2^-14); float: r^2 2^-22
+ * over the same; rt-fixed16: r^2 2^-14 over sqrt(r^2 2^-10), r 2^-9 within ml's (D + r)
+ * 2^-6) plus tca's: so within the segment, and A blocks it. test_shapes: test_dark_inside.
+ * Once per frame: compiled for size. */
 #if defined(__arm__) && !defined(__thumb2__)
 __attribute__((target("thumb"))) /* the ARM926 image: Thumb, as ARM_COLD_SRCS (Makefile) */
 #endif
@@ -501,7 +523,10 @@ scene_ray_sets(rt_scene *s)
     const real delta = r_add_in(r_add_in(R(0.00390625), r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
                                 r_muli(R_EPS_OFFSET, 2));
     int last_plane = -1;
+    for (int l = 0; l < RT_MAX_LIGHTS; l++)
+        s->dark_inside[l] = 0;
     for (int i = 0; i < RT_MAX_OBJECTS; i++) {
+        s->dark_r[i] = 0;
         /* a plane's rays mirrored off its front: every object but itself (trace_secondary) */
         int plane = i < s->nobjects && s->objects[i].kind == RT_PLANE;
         for (int q = 0; q < 8; q++)
@@ -516,6 +541,17 @@ scene_ray_sets(rt_scene *s)
             continue;
         real rho = r_add_in(oa->radius, delta);
         real ma = r_add_in(R(0.0009765625), r_shr(r_add_in(rho, oa->radius), 12));
+        /* dark_r, dark_inside (the proof above) */
+        real mi = r_add_in(R(0.0009765625), r_shr(oa->radius, U_LEN_ERR_SHIFT - 4));
+        s->dark_r[a] = oa->radius > mi ? r_add_in(oa->radius, r_neg_in(mi)) : 0;
+        for (int l = 0; l < s->nlights; l++) {
+            real dl = r_sqrt_w(w_len2(v3_sub_in(s->lights[l].pos, oa->center)));
+            real ml = r_add_in(r_add_in(r_muli(R_EPS_OFFSET, 2), R(0.015625)),
+                               r_shr(r_add_in(dl, oa->radius), U_LEN_ERR_SHIFT - 8));
+            if ((s->occluders[l] >> a & 1) && s->dark_r[a] > 0 &&
+                dl > r_add_in(r_add_in(oa->radius, ml), r_muli(R_LSB, 2)))
+                s->dark_inside[l] |= (uint32_t)1 << a;
+        }
         for (int b = 0; b < s->nobjects; b++) {
             const rt_object *ob = &s->objects[b];
             if (b == a || ob->kind != RT_SPHERE)

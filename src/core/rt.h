@@ -191,6 +191,12 @@ typedef struct rt_scene {
      * Every object everywhere when effects are forced. */
     uint32_t ray_oct[RT_MAX_OBJECTS][8];
     uint32_t ray_in[RT_MAX_OBJECTS];
+    /* Per light l, bit a: sphere a is among the light's occluders and the light lies well
+     * outside it, so that a point of a seen from inside whose offset start p_out lies within
+     * dark_r[a] of the centre is in a's own shadow: its shadow ray, whatever its rounding, would
+     * meet a (rt_light_reach; rt_scene_prepare: scene_ray_sets). */
+    uint32_t dark_inside[RT_MAX_LIGHTS];
+    real dark_r[RT_MAX_OBJECTS];
 } rt_scene;
 
 /* The octant of direction d, as rt_scene.ray_oct indexes it: bit k set where component k (x,
@@ -408,17 +414,20 @@ typedef struct rt_stats {
 #define RT_OUT_OF_LINE
 #endif
 
-/* Per-type interface: every shape is intersected and shaded through this table. */
+/* Per-type interface: every shape is shaded through this table. */
 typedef struct rt_shape_ops {
-    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. The ray
-     * starts at a ray origin of the tracer and tmax is at most 30573, the longest shadow segment
-     * (docs/numerics.md: the sphere test's unchecked arithmetic relies on both). */
-    int (*intersect)(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
     /* Outward unit normal at a point p on the surface. */
     dir3 (*normal)(const rt_object *o, vec3 p);
 } rt_shape_ops;
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
+
+/* Object o's nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0: the
+ * test the tracer's searches (rt_nearest_set, rt_nearest_primary) make, for one object (the
+ * tests and tools; the searches inline it). The ray starts at a ray origin of the tracer and
+ * tmax is at most 30573, the longest shadow segment (docs/numerics.md: the sphere test's
+ * unchecked arithmetic relies on both). */
+int rt_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
 
 /* rt_shapes[RT_SPHERE].normal with the point passed in place: the tracer's direct call (no
  * table, no copy of the point); a plane's normal is its rt_object.normal. */
@@ -594,6 +603,14 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     vec3 to_light = v3_sub_in(li->pos, *p);
     if (!v3_faces(to_light, n))
         return 0;
+    /* A point seen from inside a sphere whose own shadow ray would certainly meet the sphere
+     * (dark_inside, p_out well inside): unlit, without the normalisation and the ray's tests;
+     * counted as the shadow ray it decides. */
+    if (RT_RAY_SETS && inside && st && (s->dark_inside[i] >> id & 1) &&
+        w_len2(v3_sub_in(*p_out, s->objects[id].center)) < w_sq(s->dark_r[id])) {
+        st->rays_shadow++;
+        return 0;
+    }
     const real dist = d3_norm_len(to_light, l);
     unit ndl = d3_dot(n, *l);
     if (ndl <= 0)

@@ -1,7 +1,7 @@
 /* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
 #include "rt.h"
 
-/* Always inlined into the loops over objects below (rt_shapes gets an out-of-line copy). */
+/* Always inlined into the loops over objects below (rt_intersect gets an out-of-line copy). */
 #define SHAPES_INLINE static inline __attribute__((always_inline))
 
 /* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
@@ -112,12 +112,18 @@ static dir3 plane_normal(const rt_object *o, vec3 p)
 }
 
 const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
-    [RT_SPHERE] = {sphere_intersect, sphere_normal},
-    [RT_PLANE] = {plane_intersect, plane_normal},
+    [RT_SPHERE] = {sphere_normal},
+    [RT_PLANE] = {plane_normal},
 };
 
-/* The loops below call the shape tests directly rather than through rt_shapes: the compiler
- * then inlines them, which saves the indirect call and the passing of the ray per object. */
+int rt_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
+                                : plane_intersect(o, org, d, tmax, t);
+}
+
+/* The loops below call the shape tests directly: the compiler then inlines them, which saves
+ * the call and the passing of the ray per object. */
 
 /* The plane test of rt_nearest_set, inlined there (on ARM too: once the tracer's other changes
  * were in, the inlined test measured 0.1% fewer instructions a frame than the out-of-line one,
