@@ -111,6 +111,8 @@ void rt_scene_force_effects(rt_scene *s)
             s->ray_oct[j][q] = 0xFFFFFFFFu;
         s->ray_in[j] = 0xFFFFFFFFu;
     }
+    for (int l = 0; l < RT_MAX_LIGHTS; l++) /* and every shadow ray is tested */
+        s->dark_inside[l] = 0;
 }
 
 /* Does the surface of object o pass within RT_NEAR_LIGHT of the point q? */
@@ -509,10 +511,11 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
  * hit is negative, the far one tca + thc positive. The segment's end lies within 2 R_EPS_OFFSET
  * plus d's error times dist ((D + r) 2^-(U_LEN_ERR_SHIFT - 2)) of L, so outside A by more than
  * 2^-6 + (D + r) 2^-(U_LEN_ERR_SHIFT - 4): the exit point comes that far before it, and the far
- * hit as formed is off the exit by thc's error, a's error over 2 thc with thc >= sqrt(r mi):
- * below 2^-8 in every build (fixed: a few steps times r over sqrt(r^2 2^-14); float: r^2 2^-22
- * over the same; rt-fixed16: r^2 2^-14 over sqrt(r^2 2^-10), r 2^-9 within ml's (D + r)
- * 2^-6) plus tca's: so within the segment, and A blocks it. test_shapes: test_dark_inside.
+ * hit as formed is off the exit by thc's error, a's error over 2 thc with thc >= sqrt(r mi),
+ * plus tca's: within ml's 2^-6 + (D + r) 2^-(U_LEN_ERR_SHIFT - 8) in every build (fixed: a
+ * few steps times r over sqrt(r^2 2^-14), below 2^-8; float: r^2 2^-22 over the same, below
+ * 2^-8 + r 2^-12; rt-fixed16: r^2 2^-14 over sqrt(r^2 2^-10), r 2^-9): so within the segment,
+ * and A blocks it. test_shapes: test_dark_inside.
  * Once per frame: compiled for size. */
 #if defined(__arm__) && !defined(__thumb2__)
 __attribute__((target("thumb"))) /* the ARM926 image: Thumb, as ARM_COLD_SRCS (Makefile) */
