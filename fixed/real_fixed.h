@@ -710,6 +710,30 @@ static inline FX_RENORM_INLINE dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
         return fx_norm64(x, y, z, 60, 0);
     return d;
 }
+/* fx_renorm of a vector whose length is within 2^-23 of one: each |component| < 2^61 and |e| <
+ * 2^37, so fx_renorm's range checks pass and fx_renorm_q30's square term (3e^2/8, e / 2^20 below
+ * 2^17 squared over 2^40) is 0: g = e / 2^21, the same result. Only for the mirrored direction
+ * of unit vectors (d3_reflect_k, docs/numerics.md). The event-counting builds take fx_renorm and
+ * count FX_EV_OVERFLOW where the bound fails (see r_mul_in). */
+static inline FX_RENORM_INLINE dir3 fx_renorm_unit(int64_t x, int64_t y, int64_t z)
+{
+    int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
+            c = (int32_t)fx_round_shift(z, 30);
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+#if FX_COUNT_EVENTS
+    const uint64_t two = (uint64_t)1 << 61;
+    if ((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
+        (uint64_t)z + two >= 2 * two || e >= ((int64_t)1 << 37) || e <= -((int64_t)1 << 37))
+        FX_EVENT(FX_EV_OVERFLOW);
+    return fx_renorm(x, y, z);
+#else
+    int32_t g = (int32_t)(e >> 21);
+    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
+              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
+              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
+    return d;
+#endif
+}
 #else
 /* The same for unit in Q16.16: a Q.32 vector unit to within 2^-10, rounded to Q16.16 and
  * corrected to first order, v * (1 - e/2): what that leaves out, 3/8 e^2, is below 2^-21, far
@@ -731,6 +755,12 @@ static inline FX_RENORM_INLINE dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
               b - (int32_t)fx_round_shift((int64_t)b * g, 32),
               c - (int32_t)fx_round_shift((int64_t)c * g, 32)};
     return d;
+}
+
+/* With unit in Q16.16 the mirrored direction takes fx_renorm itself. */
+static inline FX_RENORM_INLINE dir3 fx_renorm_unit(int64_t x, int64_t y, int64_t z)
+{
+    return fx_renorm(x, y, z);
 }
 #endif
 
@@ -798,7 +828,8 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
 
 /* Mirror direction of d about the normal n: d - 2 (d.n) n, renormalised; dn = d3_dot(d, n)
  * (the tracer has it already). |dn| <= 1 + 2^-28, so dn n.x is one signed 32 x 32-bit product
- * (smull) and 2 dn n.x stays below 2^62. */
+ * (smull) and 2 dn n.x stays below 2^62. For unit d and n (lengths within 2^-28 of one) the
+ * vector's length is within 2^-23 of one (docs/numerics.md): fx_renorm_unit. */
 static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
 {
     /* formed as 2 (d.x U_ONE / 2 + (-dn) n.x), the same value: a multiply-accumulate onto
@@ -808,7 +839,7 @@ static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
     int64_t x = 2 * ((int64_t)d.x * half + (int64_t)m * n.x);
     int64_t y = 2 * ((int64_t)d.y * half + (int64_t)m * n.y);
     int64_t z = 2 * ((int64_t)d.z * half + (int64_t)m * n.z);
-    return fx_renorm(x, y, z);
+    return fx_renorm_unit(x, y, z);
 }
 
 static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot(d, n)); }

@@ -1700,6 +1700,84 @@ static void test_sphere_span(void **state)
 }
 #endif
 
+#if REAL_FIXED && FX_UNIT_FRAC == 30
+/* A random unit vector as the tracer forms them: d3_norm of reals of mixed scales (some
+ * components zero or tiny), or a sphere's normal (d3_norm_near). */
+static dir3 rng_dir(void)
+{
+    real c[3];
+    for (int i = 0; i < 3; i++)
+        c[i] = rng() % 8 == 0 ? 0 : rng_real(-6, 12);
+    if (c[0] == 0 && c[1] == 0 && c[2] == 0)
+        c[1] = R_ONE;
+    if (rng() % 3 == 0) { /* a point near a sphere minus its centre */
+        real r = rng_real(-2, 10);
+        r = r < 0 ? -r : r;
+        dir3 u = d3_norm(v3(c[0], c[1], c[2]), 0);
+        vec3 v = v3(r_mul_u(r, u.x), r_mul_u(r, u.y), r_mul_u(r, u.z));
+        if (!v3_is_zero(v))
+            return d3_norm_near(v, r_inv_len(r));
+    }
+    return d3_norm(v3(c[0], c[1], c[2]), 0);
+}
+
+/* d3_reflect_k's renormalisation (fx_renorm_unit): for unit d and n the mirrored vector is unit
+ * to within 2^-23, so the release build's form without fx_renorm's checks and square term gives
+ * fx_renorm's result. Checked on random directions and normals, on chains of mirrorings (the
+ * tracer's bounces) and at grazing and normal incidence, with no FX_EV_OVERFLOW (the event
+ * build counts one where the bound fails); the worst length error is printed. */
+static void test_reflect_unit(void **state)
+{
+    (void)state;
+    fx_events_reset();
+    double worst = 0;
+    dir3 d = rng_dir();
+    for (int k = 0; k < 300000; k++) {
+        dir3 n = rng_dir();
+        if (k % 5 == 0) /* grazing: n at right angles to d, to rounding */
+            n = d3_cross(d, d3_cross(d, n, 0), 0);
+        if (k % 7 == 0) /* normal incidence */
+            n = d3_neg(d);
+        if (n.x == 0 && n.y == 0 && n.z == 0)
+            continue;
+        unit dn = d3_dot(d, n);
+        const int64_t half = (int64_t)1 << 29;
+        const int32_t m = -dn;
+        int64_t x = 2 * ((int64_t)d.x * half + (int64_t)m * n.x);
+        int64_t y = 2 * ((int64_t)d.y * half + (int64_t)m * n.y);
+        int64_t z = 2 * ((int64_t)d.z * half + (int64_t)m * n.z);
+        double len = sqrt(ldexp((double)x, -60) * ldexp((double)x, -60) +
+                          ldexp((double)y, -60) * ldexp((double)y, -60) +
+                          ldexp((double)z, -60) * ldexp((double)z, -60));
+        if (fabs(len - 1) > worst)
+            worst = fabs(len - 1);
+        /* the release build's steps */
+        int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
+                c = (int32_t)fx_round_shift(z, 30);
+        int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+        int32_t g = (int32_t)(e >> 21);
+        dir3 fast = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
+                     b - (int32_t)fx_round_shift((int64_t)b * g, 40),
+                     c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
+        dir3 want = fx_renorm(x, y, z), got = d3_reflect_k(d, n, dn);
+        if (fast.x != want.x || fast.y != want.y || fast.z != want.z || got.x != want.x ||
+            got.y != want.y || got.z != want.z) {
+            n_failed++;
+            print_error("reflection %d: release form (%d %d %d), fx_renorm (%d %d %d)\n", k, fast.x,
+                        fast.y, fast.z, want.x, want.y, want.z);
+            break;
+        }
+        d = k % 3 == 0 ? rng_dir() : got; /* chains of mirrorings */
+    }
+    print_message("reflect: worst |length - 1| of the mirrored vector %.3g (bound 2^-23 = %.3g)\n",
+                  worst, ldexp(1, -23));
+    assert_true(worst < ldexp(1, -23));
+    /* (domain events: the grazing normals' cross products of parallel vectors, skipped) */
+    check_events("d3_reflect_k", 0, fx_event_count[FX_EV_DOMAIN]);
+    checks_done();
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1721,6 +1799,9 @@ int main(void)
         cmocka_unit_test_setup(test_vectors, reset_checks),
         cmocka_unit_test_setup(test_primary_rays, reset_checks),
         cmocka_unit_test_setup(test_reflect_refract, reset_checks),
+#if REAL_FIXED && FX_UNIT_FRAC == 30
+        cmocka_unit_test_setup(test_reflect_unit, reset_checks),
+#endif
     };
 #ifdef TEST_NUMERIC_REPORT
     return cmocka_run_group_tests(tests, NULL, print_worst);

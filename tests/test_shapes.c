@@ -67,7 +67,7 @@ static double sphere_oracle(double ox, double oy, double oz, double dx, double d
 static int hit(const rt_object *o, vec3 org, dir3 d, real tmax, double *t)
 {
     real tr;
-    int h = rt_shapes[o->kind].intersect(o, org, d, tmax, &tr);
+    int h = rt_intersect(o, org, d, tmax, &tr);
     *t = h ? to_d(tr) : -1;
     return h;
 }
@@ -280,7 +280,7 @@ static void test_shadow_cull(void **state)
         real seg, t;
         if (!shadow_segment(&s, cx, cy, cz, ux, uy, uz, rq, i & 1, &p_out, &l, &seg))
             continue;
-        int want = rt_shapes[RT_SPHERE].intersect(o, p_out, l, seg, &t);
+        int want = rt_intersect(o, p_out, l, seg, &t);
         rt_stats st = {0};
         int got = rt_occluded(&s, &st, 0, 1, &p_out, &l, seg);
         if (got != want)
@@ -832,7 +832,7 @@ static double ud(unit u) { return u; }
  * whose primary ray's nearest hit is the plane, the reflected ray as trace_secondary casts it
  * (from p_out along d3_reflect_k) is tested against every sphere: a sphere it hits must be among
  * the pixel's mirror candidates, and the pixel's direction must lie within the sphere's mirror
- * cone (rt_scene_mirror_cone, the angle in double); rt_nearest_cand with the candidates gives
+ * cone (rt_scene_mirror_cone, the angle in double); rt_nearest_set with the candidates gives
  * rt_nearest_but's hit. Most sphere tests are left out. */
 static void test_mirror_tiles(void **state)
 {
@@ -921,7 +921,7 @@ static void test_mirror_tiles(void **state)
                     tests++;
                     skipped += !(cand & (1u << i));
                     real th;
-                    if (!rt_shapes[RT_SPHERE].intersect(&s.objects[i], p_out, r, R_T_MAX, &th))
+                    if (!rt_intersect(&s.objects[i], p_out, r, R_T_MAX, &th))
                         continue;
                     hits++;
                     if (!(cand & (1u << i)))
@@ -943,7 +943,7 @@ static void test_mirror_tiles(void **state)
                 }
                 real t1, t2;
                 int id1 = rt_nearest_but(&s, p_out, r, R_T_MAX, pl, &t1);
-                int id2 = rt_nearest_cand(&s, p_out, r, R_T_MAX, pl, cand, &t2);
+                int id2 = rt_nearest_set(&s, p_out, r, R_T_MAX, cand & ~((uint32_t)1 << pl), &t2);
                 if (id1 != id2 || t1 != t2)
                     fail_msg("case %d pixel (%d, %d): %d at %g with every object, %d at %g with "
                              "the mirror candidates",
@@ -1066,6 +1066,200 @@ static void test_far_mirror_chain(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
+/* The secondary rays' candidate sets (rt_scene.ray_oct, ray_in): rays cast as trace_secondary
+ * casts them from hits on a sphere (mirrored and refracted, from outside and inside) among
+ * spheres that rest on a floor, touch, overlap or stand apart, find through rt_nearest_from with
+ * the sets (and ray_in's check: searched again with ray_oct's where the sphere is not the hit)
+ * the object and distance the search of every object finds, in both builds. Scenes near the origin and far out (where
+ * hit points are least exact). */
+static void test_ray_sets(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    int n = 60000, rays = 0, into_rays = 0, again = 0;
+    long tests_all = 0, tests_set = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double span = i % 8 == 0 ? 1500.0 : 4.0, base = i % 8 == 0 ? rnd(-1500, 1500) : 0;
+        s = (rt_scene){0};
+        int ns = 3 + i % 5, pl = (i >> 3) % 3 == 0 ? ns / 2 : 0;
+        s.nobjects = ns + 1;
+        s.objects[pl] = plane(0, 1, 0, base);
+        for (int j = 0, k = 0; j < ns; j++, k++) {
+            if (k == pl)
+                k++;
+            double r = i % 8 == 0 ? rnd(0.5, 200) : rnd(0.2, 1.5);
+            double x = rnd(-span, span), z = rnd(-span, span);
+            /* resting on the floor, floating, or cutting it */
+            double y = base + (j % 3 == 0 ? r : j % 3 == 1 ? r + rnd(0, span) : rnd(-r, r));
+            if (j > 0 && i % 4 == 1) { /* touching the previous sphere, or overlapping it */
+                const rt_object *o = &s.objects[k - 1 == pl ? k - 2 : k - 1];
+                double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+                double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+                double dd = to_d(o->radius) + r + (i & 32 ? 0 : rnd(-0.3, 0.01) * r);
+                x = to_d(o->center.x) + ux / un * dd;
+                y = to_d(o->center.y) + uy / un * dd;
+                z = to_d(o->center.z) + uz / un * dd;
+            }
+            s.objects[k] = sphere(x, y, z, r);
+        }
+        s.nmaterials = 1;
+        s.materials[0].ior = R_ONE;
+        s.camera.eye = vd(base, base + 1000, base);
+        rt_scene_prepare(&s);
+        /* a hit on sphere a, from a ray aimed at a point of it from outside or inside */
+        int a = pl == 0 ? 1 + (int)rnd(0, ns - 0.001) : (int)rnd(0, ns + 0.999);
+        if (a == pl || a > ns)
+            continue;
+        const rt_object *oa = &s.objects[a];
+        double ca[3] = {to_d(oa->center.x), to_d(oa->center.y), to_d(oa->center.z)};
+        double ra = to_d(oa->radius);
+        double qx = rnd(-1, 1), qy = rnd(-1, 1), qz = rnd(-1, 1);
+        double qn = sqrt(qx * qx + qy * qy + qz * qz) + 1e-9;
+        double far = i & 2 ? 0.3 * ra : ra + rnd(0.5, 4) * ra;
+        vec3 org = vd(ca[0] + qx / qn * far, ca[1] + qy / qn * far, ca[2] + qz / qn * far);
+        double tx = rnd(-1, 1), ty = rnd(-1, 1), tz = rnd(-1, 1);
+        double tn = sqrt(tx * tx + ty * ty + tz * tz) + 1e-9;
+        dir3 d = dirv(ca[0] + tx / tn * ra - to_d(org.x), ca[1] + ty / tn * ra - to_d(org.y),
+                      ca[2] + tz / tn * ra - to_d(org.z));
+        real t;
+        if (!v3_within(org, R_SCENE_MAX) || rt_nearest(&s, org, d, R_T_MAX, &t) != a)
+            continue;
+        vec3 p = v3_along(org, d, t);
+        if (!v3_within(p, R_SCENE_MAX))
+            continue;
+        dir3 nrm = rt_sphere_normal(oa, &p);
+        unit dn = d3_dot(d, nrm);
+        int inside = dn > 0;
+        if (inside) {
+            nrm = d3_neg(nrm);
+            dn = u_neg(dn);
+        }
+        for (int kind = 0; kind < 2; kind++) {
+            dir3 rd;
+            vec3 o2;
+            int into;
+            if (kind == 0) { /* mirrored */
+                rd = d3_reflect_k(d, nrm, dn);
+                o2 = v3_along(p, nrm, R_EPS_OFFSET);
+                into = inside;
+            } else { /* refracted */
+                real eta = inside ? from_d(rnd(1, 2)) : from_d(rnd(0.5, 1));
+                if (!d3_refract_k(d, nrm, dn, eta, &rd))
+                    continue;
+                o2 = v3_along(p, nrm, r_neg(R_EPS_OFFSET));
+                into = !inside;
+            }
+            real t1, t2;
+            int want = rt_nearest_set(&s, o2, rd, R_T_MAX, ~(uint32_t)0, &t1);
+            int got = rt_nearest_from(&s, o2, rd, R_T_MAX, 2 * a + into, ~(uint32_t)0, &t2);
+            uint32_t cand = s.ray_oct[a][rt_octant(rd)], all = ((uint32_t)1 << s.nobjects) - 1;
+            uint32_t in = cand & s.ray_in[a];
+            if (into && rt_nearest_set(&s, o2, rd, R_T_MAX, in, &t1) != a) {
+                again++;
+                in = cand; /* searched again with ray_oct's */
+            }
+            if (got != want || (got >= 0 && t1 != t2))
+                fail_msg("ray from sphere %d (%s, %s): sets give %d at %g, every object %d at %g "
+                         "(case %d)",
+                         a, kind ? "refracted" : "mirrored", into ? "inside" : "outside", got,
+                         to_d(t2), want, to_d(t1), i);
+            rays++;
+            into_rays += into;
+            tests_all += __builtin_popcount(all);
+            tests_set += __builtin_popcount((into ? in : cand) & all);
+        }
+    }
+    print_message("ray sets: %d secondary rays (%d from inside), %ld of %ld object tests left "
+                  "out, %d searched again\n",
+                  rays, into_rays, tests_all - tests_set, tests_all, again);
+    assert_true(rays > n / 4);
+    assert_true(into_rays > n / 20);
+    assert_true(tests_set < tests_all * 9 / 10); /* the sets leave tests out */
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
+/* A point seen from inside a sphere is in the sphere's own shadow where rt_scene.dark_inside and
+ * dark_r say so: rt_light_reach's shortcut (no normalisation, no shadow ray test) gives what
+ * the full test gives, for points of glass spheres of radius 0.05 to 200 hit from inside (near
+ * the origin and 1500 units out) or off the surface by up to 3 R_EPS_OFFSET either side, lights
+ * far off, just outside the margin and near the surface (aimed from p_out), a floor and a
+ * neighbour among the occluders, in both builds. */
+static void test_dark_inside(void **state)
+{
+    (void)state;
+    static rt_scene s, plain;
+    int n = 60000, tried = 0, dark = 0, lit = 0;
+    fx_events_reset();
+    for (int i = 0; i < n; i++) {
+        double base = i % 8 == 0 ? rnd(-1500, 1500) : 0;
+        double r = i % 3 == 0 ? rnd(0.05, 0.5) : i % 3 == 1 ? rnd(0.5, 3) : rnd(3, 200);
+        s = (rt_scene){0};
+        s.nobjects = 3;
+        s.nlights = 2;
+        double cx = base + rnd(-5, 5), cy = base + r + rnd(0, 2), cz = base + rnd(-5, 5);
+        s.objects[0] = plane(0, 1, 0, base);
+        s.objects[1] = sphere(cx, cy, cz, r);
+        s.objects[2] = sphere(cx + 2.5 * r + 1, cy, cz, r);
+        s.nmaterials = 1;
+        s.materials[0].ior = R(1.5);
+        s.materials[0].transmit = R(0.85); /* glass: rays get inside */
+        for (int l = 0; l < 2; l++) {
+            double ux = rnd(-1, 1), uy = rnd(-1, 1), uz = rnd(-1, 1);
+            double un = sqrt(ux * ux + uy * uy + uz * uz) + 1e-9;
+            /* far, just outside the shortcut's margin, or near the surface */
+            double dl = l == 0 ? r + rnd(1, 60) : r + (i & 4 ? rnd(0, 0.05) : rnd(0.0005, 0.004));
+            s.lights[l].pos = vd(cx + ux / un * dl, cy + uy / un * dl, cz + uz / un * dl);
+            s.lights[l].color = v3(R_ONE, R_ONE, R_ONE);
+        }
+        s.camera.eye = vd(base, base + 1000, base);
+        rt_scene_prepare(&s);
+        plain = s;
+        for (int l = 0; l < RT_MAX_LIGHTS; l++)
+            plain.dark_inside[l] = 0;
+        /* a hit on sphere 1 from inside it, as the tracer finds it */
+        double q = rnd(0, 0.9) * r, ox = rnd(-1, 1), oy = rnd(-1, 1), oz = rnd(-1, 1);
+        double on = sqrt(ox * ox + oy * oy + oz * oz) + 1e-9;
+        vec3 org = vd(cx + ox / on * q, cy + oy / on * q, cz + oz / on * q);
+        dir3 d = dirv(rnd(-1, 1), rnd(-1, 1), rnd(-1, 1));
+        real t;
+        vec3 p;
+        dir3 nrm;
+        if (i & 1) { /* or a point off the surface by up to 3 R_EPS_OFFSET, either side */
+            double e = r + rnd(-3, 3) * to_d(R_EPS_OFFSET);
+            p = vd(cx + ox / on * e, cy + oy / on * e, cz + oz / on * e);
+            nrm = d3_neg(rt_sphere_normal(&s.objects[1], &p));
+        } else {
+            if (rt_nearest(&s, org, d, R_T_MAX, &t) != 1)
+                continue;
+            p = v3_along(org, d, t);
+            nrm = rt_sphere_normal(&s.objects[1], &p);
+            if (d3_dot(d, nrm) <= 0)
+                continue; /* not seen from inside */
+            nrm = d3_neg(nrm);
+        }
+        vec3 p_out = v3_along(p, nrm, R_EPS_OFFSET);
+        for (int l = 0; l < 2; l++) {
+            rt_stats st = {0}, st_plain = {0};
+            dir3 l1, l2;
+            unit got = rt_light_reach(&s, &st, l, 1, 1, &p, &p_out, nrm, &l1);
+            unit want = rt_light_reach(&plain, &st_plain, l, 1, 1, &p, &p_out, nrm, &l2);
+            if (got != want)
+                fail_msg("light %d at a point seen from inside: %d with the shortcut, %d without "
+                         "(case %d, radius %g)",
+                         l, got, want, i, r);
+            tried++;
+            dark += st.shadow_tests < st_plain.shadow_tests;
+            lit += want != 0;
+        }
+    }
+    print_message("dark inside: %d light tests from inside, %d decided by the shortcut, %d lit\n",
+                  tried, dark, lit);
+    assert_true(tried > n / 2);
+    assert_true(dark > tried / 6);
+    assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1075,7 +1269,8 @@ int main(void)
         cmocka_unit_test(test_primary_cull),     cmocka_unit_test(test_primary_tiles),
         cmocka_unit_test(test_mirror_tiles),     cmocka_unit_test(test_sample_record),
         cmocka_unit_test(test_far_mirror_chain), cmocka_unit_test(test_shadow_pairs),
-        cmocka_unit_test(test_plane_pairs),
+        cmocka_unit_test(test_plane_pairs),      cmocka_unit_test(test_ray_sets),
+        cmocka_unit_test(test_dark_inside),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -211,7 +211,7 @@ static void test_sphere_properties(void **state)
         }
         int want = t_true > 0 && t_true < to_d(R_T_MAX);
         real tr;
-        int got = rt_shapes[RT_SPHERE].intersect(&s, org, d, R_T_MAX, &tr);
+        int got = rt_intersect(&s, org, d, R_T_MAX, &tr);
         double len = sqrt(dot(l, l));
         if (got != want) {
             double gap = fabs(perp - r);
@@ -280,7 +280,7 @@ static void test_sphere_properties(void **state)
                 if (d3_dot(sd, n) <= 0)
                     continue;
                 real ts;
-                if (rt_shapes[RT_SPHERE].intersect(&s, po, sd, R_T_MAX, &ts)) {
+                if (rt_intersect(&s, po, sd, R_T_MAX, &ts)) {
                     double pm = fmax(t_true, fmax(fabs(pd[0]), fmax(fabs(pd[1]), fabs(pd[2]))));
                     if (pm > SELF_SAFE) { /* float only: see SELF_SAFE */
                         self_far++;
@@ -356,7 +356,7 @@ static void test_plane_properties(void **state)
         double t_true = num / den;
         int want = fabs(den) >= to_d(R_ONE) * 1e-4 && t_true > 0 && t_true < to_d(R_T_MAX);
         real tr;
-        int got = rt_shapes[RT_PLANE].intersect(&pl, org, d, R_T_MAX, &tr);
+        int got = rt_intersect(&pl, org, d, R_T_MAX, &tr);
         if (got != want) {
             double near_cos = fabs(fabs(den) - 1e-4);
             double near_t = fmin(fabs(t_true), fabs(t_true - to_d(R_T_MAX)));
@@ -392,7 +392,7 @@ static void test_plane_properties(void **state)
         if (d3_dot(sd, nn) < 0)
             sd = d3_neg(sd);
         real ts;
-        if (d3_dot(sd, nn) > 0 && rt_shapes[RT_PLANE].intersect(&pl, po, sd, R_T_MAX, &ts)) {
+        if (d3_dot(sd, nn) > 0 && rt_intersect(&pl, po, sd, R_T_MAX, &ts)) {
             double pm = fmax(t_true, fmax(fabs(pd[0]), fmax(fabs(pd[1]), fabs(pd[2]))));
             if (pm > SELF_SAFE) { /* float only: see SELF_SAFE */
                 self_far++;

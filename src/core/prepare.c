@@ -106,6 +106,13 @@ void rt_scene_force_effects(rt_scene *s)
         for (int j = 0; RT_SHADOW_SETS && j < RT_MAX_OBJECTS; j++)
             s->occ_of[l][j] = s->occluders[l];
     }
+    for (int j = 0; j < RT_MAX_OBJECTS; j++) { /* every secondary ray tests every object */
+        for (int q = 0; q < 8; q++)
+            s->ray_oct[j][q] = 0xFFFFFFFFu;
+        s->ray_in[j] = 0xFFFFFFFFu;
+    }
+    for (int l = 0; l < RT_MAX_LIGHTS; l++) /* and every shadow ray is tested */
+        s->dark_inside[l] = 0;
 }
 
 /* Does the surface of object o pass within RT_NEAR_LIGHT of the point q? */
@@ -458,6 +465,126 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
     }
 }
 
+/* The secondary rays' candidate sets (rt_scene.ray_oct, ray_in), for rays from hit points of
+ * each sphere A (centre c_A, radius r_A).
+ *
+ * trace_secondary casts them from p_out = p + R_EPS_OFFSET n or p_in = p - R_EPS_OFFSET n, p a
+ * hit point on A: within rho = r_A + delta of c_A, delta as scene_shadow_pairs takes it (a hit
+ * point's distance from its surface, 1/8 in fixed and float, 2 in rt-fixed16, plus 2
+ * R_EPS_OFFSET). If sphere B's test (as rt_nearest_set forms it) reports a hit at t > 0 for
+ * such a ray (origin o, direction d as stored), the point h = o + t d lies within r_B + m of
+ * c_B, m = 2^-10 + (D + r_B) 2^-12 with D >= |c_B - o| (scene_cull's margin four times over, as
+ * scene_shadow_pairs takes it), D taken as |V|_1 + rho, V = c_B - c_A (the sum of the
+ * magnitudes is at least the length: no square root). So with R = rho + r_B + m + 2^-8 (the
+ * last term for the rounding of V and R themselves in float; fixed forms V exactly; every sum is
+ * of in-scene distances, below 30000: r_add_in):
+ *
+ * ray_oct: t d_k = h_k - o_k >= V_k - (r_B + m) - rho, so V_k > R gives d_k > 0 (t > 0): a ray
+ * whose component k is negative (octant bit k set, rt_octant) never gets a hit on B, and B is
+ * left out of those octants; V_k < -R likewise for the octants with d_k >= 0 (bit k clear). Only
+ * spheres are left out, only where their test cannot report a hit: the same results for any ray
+ * from A. (Planes stay: the intro's spheres rest on the floor, so p_out can lie beneath it.)
+ *
+ * ray_in: if A's own test reports a hit at t_A (its point within r_A + m_A of c_A, m_A =
+ * 2^-10 + (rho + r_A) 2^-12), the ray's points for t in [0, t_A] lie within rho + m_A of c_A
+ * (o and that point do: the ball is convex). With |V| > R + m_A (as squares, wide), no point of
+ * B's within r_B + m of c_B is among them: B's test, if it reports a hit, reports one beyond t_A.
+ * B is left out only when it comes after every plane in the objects' order: the objects before
+ * the last plane are then all tested, with the same tmax at each, and after it rt_nearest_set
+ * keeps the strictly nearest sphere hit (ties to the first), so where the search without B
+ * finds A it is the search's answer with B (trace_ray searches again otherwise).
+ *
+ * dark_inside, dark_r (rt_light_reach's shortcut): a point p of A seen from inside (its normal
+ * n turned inward) with p_out = p + R_EPS_OFFSET n, |p_out - c_A| < r - mi exactly (dark_r = r -
+ * mi, mi = 2^-10 + r 2^-(U_LEN_ERR_SHIFT - 4): r 2^-14 fixed and float, r 2^-10 rt-fixed16),
+ * under a light L at D = |L - c_A| > r + ml + 2 LSB (ml = 2 R_EPS_OFFSET + 2^-6 + (D + r)
+ * 2^-(U_LEN_ERR_SHIFT - 8)), A among its occluders: rt_light_reach returns 0 whenever it gets
+ * as far as the shadow ray (or earlier, n . l <= 0). The ray's occluders hold A (seen from
+ * inside, rt_light_reach adds A back); the bound's, the quadrants' and A's own rejections
+ * refuse only segments A's test would miss, so the ray is blocked if A's test (sphere_blocks)
+ * reports the segment from p_out along d (unit to 2^-U_LEN_ERR_SHIFT / 4, toward L from p, or
+ * from p_out for a near light) of length dist - R_EPS_OFFSET (dist within a step of |L - p|, or
+ * |L - p_out|, above R_EPS_OFFSET as L is far outside). With l = c - p_out, |l| < r - mi: tca <=
+ * |l| < r passes both first rejections; |perp|^2 = |l|^2 - tca^2 within a few steps times r
+ * (d's length error times r, and each component's rounding), so a = r^2 - |perp|^2 exceeds
+ * tca^2 by at least 2 r mi - mi^2 less that, and thc - |tca| >= mi / 2 - a few steps: the near
+ * hit is negative, the far one tca + thc positive. The segment's end lies within 2 R_EPS_OFFSET
+ * plus d's error times dist ((D + r) 2^-(U_LEN_ERR_SHIFT - 2)) of L, so outside A by more than
+ * 2^-6 + (D + r) 2^-(U_LEN_ERR_SHIFT - 4): the exit point comes that far before it, and the far
+ * hit as formed is off the exit by thc's error, a's error over 2 thc with thc >= sqrt(r mi),
+ * plus tca's: within ml's 2^-6 + (D + r) 2^-(U_LEN_ERR_SHIFT - 8) in every build (fixed: a
+ * few steps times r over sqrt(r^2 2^-14), below 2^-8; float: r^2 2^-22 over the same, below
+ * 2^-8 + r 2^-12; rt-fixed16: r^2 2^-14 over sqrt(r^2 2^-10), r 2^-9): so within the segment,
+ * and A blocks it. test_shapes: test_dark_inside.
+ * Once per frame: compiled for size. */
+#if defined(__arm__) && !defined(__thumb2__)
+__attribute__((target("thumb"))) /* the ARM926 image: Thumb, as ARM_COLD_SRCS (Makefile) */
+#endif
+static __attribute__((cold, noinline)) void
+scene_ray_sets(rt_scene *s)
+{
+    const real delta = r_add_in(r_add_in(R(0.00390625), r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
+                                r_muli(R_EPS_OFFSET, 2));
+    int last_plane = -1;
+    for (int l = 0; l < RT_MAX_LIGHTS; l++)
+        s->dark_inside[l] = 0;
+    for (int i = 0; i < RT_MAX_OBJECTS; i++) {
+        s->dark_r[i] = 0;
+        /* a plane's rays mirrored off its front: every object but itself (trace_secondary) */
+        int plane = i < s->nobjects && s->objects[i].kind == RT_PLANE;
+        for (int q = 0; q < 8; q++)
+            s->ray_oct[i][q] = plane ? ~((uint32_t)1 << i) : 0xFFFFFFFFu;
+        s->ray_in[i] = 0xFFFFFFFFu;
+        if (plane)
+            last_plane = i;
+    }
+    for (int a = 0; a < s->nobjects; a++) {
+        const rt_object *oa = &s->objects[a];
+        if (oa->kind != RT_SPHERE)
+            continue;
+        real rho = r_add_in(oa->radius, delta);
+        real ma = r_add_in(R(0.0009765625), r_shr(r_add_in(rho, oa->radius), 12));
+        /* dark_r, dark_inside (the proof above) */
+        real mi = r_add_in(R(0.0009765625), r_shr(oa->radius, U_LEN_ERR_SHIFT - 4));
+        s->dark_r[a] = oa->radius > mi ? r_add_in(oa->radius, r_neg_in(mi)) : 0;
+        for (int l = 0; l < s->nlights; l++) {
+            real dl = r_sqrt_w(w_len2(v3_sub_in(s->lights[l].pos, oa->center)));
+            real ml = r_add_in(r_add_in(r_muli(R_EPS_OFFSET, 2), R(0.015625)),
+                               r_shr(r_add_in(dl, oa->radius), U_LEN_ERR_SHIFT - 8));
+            if ((s->occluders[l] >> a & 1) && s->dark_r[a] > 0 &&
+                dl > r_add_in(r_add_in(oa->radius, ml), r_muli(R_LSB, 2)))
+                s->dark_inside[l] |= (uint32_t)1 << a;
+        }
+        for (int b = 0; b < s->nobjects; b++) {
+            const rt_object *ob = &s->objects[b];
+            if (b == a || ob->kind != RT_SPHERE)
+                continue;
+            vec3 v = v3_sub_in(ob->center, oa->center);
+            const real vk[3] = {v.x, v.y, v.z};
+            real l1 = 0;
+            for (int k = 0; k < 3; k++)
+                l1 = r_add_in(l1, vk[k] < 0 ? r_neg_in(vk[k]) : vk[k]);
+            real m = r_add_in(R(0.0009765625), r_shr(r_add_in(r_add_in(l1, rho), ob->radius), 12));
+            real reach = r_add_in(r_add_in(r_add_in(rho, ob->radius), m), R(0.00390625));
+            /* the octants B stays in: bit q of `keep` (0xAA, 0xCC, 0xF0: those with bit k set) */
+            unsigned keep = 0xFF;
+            for (int k = 0; k < 3; k++) {
+                unsigned with_k = k == 0 ? 0xAAu : k == 1 ? 0xCCu : 0xF0u;
+                if (vk[k] > reach)
+                    keep &= ~with_k;
+                else if (vk[k] < r_neg_in(reach))
+                    keep &= with_k;
+            }
+            uint32_t bit = (uint32_t)1 << b;
+            for (int q = 0; q < 8; q++)
+                if (!(keep >> q & 1))
+                    s->ray_oct[a][q] &= ~bit;
+            if (b > last_plane && w_len2(v) > w_sq(r_add_in(reach, ma)))
+                s->ray_in[a] &= ~bit;
+        }
+    }
+}
+
 /* The largest v in [0, 1] with u_pow(v, h) == 0, by bisection: u_pow is non-decreasing in v
  * (a product of rounded products of non-negative values), 0 at 0 and 1 at 1, so every v up to
  * the result gives 0 and the highlight term can be skipped there, exactly. */
@@ -534,4 +661,6 @@ void rt_scene_prepare(rt_scene *s)
     scene_derive_effects(s);
     for (int l = 0; RT_SHADOW_SETS && l < s->nlights; l++)
         scene_shadow_pairs(s, l, cone[l]);
+    if (RT_RAY_SETS)
+        scene_ray_sets(s);
 }

@@ -179,7 +179,32 @@ typedef struct rt_scene {
      * wholly on the other side of a plane, so its rejection would refuse the ray anyway. */
     dir3 shadow_plane[RT_MAX_LIGHTS][2];
     uint32_t shadow_quad[RT_MAX_LIGHTS][4];
+    /* Secondary rays from a hit on sphere a (trace_secondary), by the octant of their direction
+     * d, q = rt_octant(d): ray_oct[a][q] holds every object whose test can report a hit for such
+     * a ray; each sphere left out lies wholly on one side of a coordinate plane through a's
+     * neighbourhood, beyond the ray's reach for that octant (rt_scene_prepare: scene_ray_sets).
+     * ray_in[a]: the objects that can be met no later than a's own hit by a ray from there (its
+     * origin inside a: refracted in, or mirrored inside); every sphere left out is apart from a,
+     * after every plane in the objects' order, so where a's test reports the nearest hit of
+     * ray_in[a]'s objects it is the nearest of all. A plane's ray_oct, for its rays mirrored
+     * off its front (rt_nearest_from), is every object but itself, its ray_in every object.
+     * Every object everywhere when effects are forced. */
+    uint32_t ray_oct[RT_MAX_OBJECTS][8];
+    uint32_t ray_in[RT_MAX_OBJECTS];
+    /* Per light l, bit a: sphere a is among the light's occluders and the light lies well
+     * outside it, so that a point of a seen from inside whose offset start p_out lies within
+     * dark_r[a] of the centre is in a's own shadow: its shadow ray, whatever its rounding, would
+     * meet a (rt_light_reach; rt_scene_prepare: scene_ray_sets). */
+    uint32_t dark_inside[RT_MAX_LIGHTS];
+    real dark_r[RT_MAX_OBJECTS];
 } rt_scene;
+
+/* The octant of direction d, as rt_scene.ray_oct indexes it: bit k set where component k (x,
+ * y, z) is negative. */
+static inline unsigned rt_octant(dir3 d)
+{
+    return (unsigned)(d.x < 0) | (unsigned)(d.y < 0) << 1 | (unsigned)(d.z < 0) << 2;
+}
 
 /* Is p the point the scene was prepared for (eye_at), exactly? Only rays from it may use the
  * per-eye data (eye_l, eye_cull, eye_num: rt_nearest_primary, rt_view_cull). */
@@ -302,6 +327,13 @@ enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE, RT_MODE_PROBE };
 #define RT_SHADOW_SETS 1
 #endif
 
+/* Are the secondary rays' candidate sets (rt_scene.ray_oct, ray_in) compiled in? Off with the
+ * shadow sets (the intro player): every secondary ray then tests every object, with the same
+ * hits (the sets leave out only objects whose test cannot change the nearest hit). */
+#ifndef RT_RAY_SETS
+#define RT_RAY_SETS RT_SHADOW_SETS
+#endif
+
 /* Is probe mode compiled in? The intro player (build/intro-*), which renders adaptively only,
  * defines this to 0 to stay within its 64 kB: rt_render then takes RT_MODE_PROBE as adaptive. */
 #ifndef RT_COMPILED_PROBE
@@ -382,17 +414,20 @@ typedef struct rt_stats {
 #define RT_OUT_OF_LINE
 #endif
 
-/* Per-type interface: every shape is intersected and shaded through this table. */
+/* Per-type interface: every shape is shaded through this table. */
 typedef struct rt_shape_ops {
-    /* Nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0. The ray
-     * starts at a ray origin of the tracer and tmax is at most 30573, the longest shadow segment
-     * (docs/numerics.md: the sphere test's unchecked arithmetic relies on both). */
-    int (*intersect)(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
     /* Outward unit normal at a point p on the surface. */
     dir3 (*normal)(const rt_object *o, vec3 p);
 } rt_shape_ops;
 
 extern const rt_shape_ops rt_shapes[RT_SHAPE_COUNT];
+
+/* Object o's nearest hit at distance t in (0, tmax): returns 1 and sets *t, else returns 0: the
+ * test the tracer's searches (rt_nearest_set, rt_nearest_primary) make, for one object (the
+ * tests and tools; the searches inline it). The ray starts at a ray origin of the tracer and
+ * tmax is at most 30573, the longest shadow segment (docs/numerics.md: the sphere test's
+ * unchecked arithmetic relies on both). */
+int rt_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t);
 
 /* rt_shapes[RT_SPHERE].normal with the point passed in place: the tracer's direct call (no
  * table, no copy of the point); a plane's normal is its rt_object.normal. */
@@ -447,7 +482,7 @@ static inline dir3 rt_view_ray(const rt_view *v, int x, int y)
  * image, by a margin above the rounding of either build), so rt_nearest_primary gives the
  * same results with the sets as without. Likewise the mirror candidates
  * (rt_view_mirror_candidates, mirror_plane = rt_scene_mirror(s)): a sphere is left out of the
- * tiles outside its rt_scene_mirror_cone, so rt_nearest_cand with them gives the reflected
+ * tiles outside its rt_scene_mirror_cone, so rt_nearest_set with them gives the reflected
  * ray's rt_nearest_but result. Call it again whenever the scene or the view changes;
  * rt_view_init resets the sets to every object (and mirror_plane to -1). */
 void rt_view_cull(rt_view *v, const rt_scene *s);
@@ -471,21 +506,68 @@ typedef struct rt_primary {
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out);
 
-/* Index of the nearest object hit by the ray within (0, tmax), or -1; *t gets the distance.
- * tmax is at most R_T_MAX, and org a ray origin of the tracer (in the scene cube, or a hit point
- * of a ray cast from it: docs/numerics.md), as the sphere and plane tests' unchecked
- * arithmetic takes them (rt_nearest_but likewise). */
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t);
+/* Index of the nearest object of `cand` (bit i: object i) hit by the ray within (0, tmax), or
+ * -1; *t gets the distance (tmax for none). The objects are tested in their order, so the result
+ * is that of testing every object wherever each one left out cannot report a hit for the ray
+ * (rt_nearest_from). tmax is at most R_T_MAX, and org a ray origin of the tracer (in the scene
+ * cube, or a hit point of a ray cast from it: docs/numerics.md), as the sphere and plane tests'
+ * unchecked arithmetic takes them. */
+int rt_nearest_set(const rt_scene *s, vec3 org, dir3 d, real tmax, uint32_t cand, real *t);
+
+/* rt_nearest_set for a ray leaving from `from`: -1 (anywhere: the objects of `cand`), 2 i for a
+ * plane i it leaves by mirroring off its front (i itself is not tested), 2 i or 2 i + 1 for a
+ * hit on sphere i, its origin R_EPS_OFFSET above or below the surface: the objects of `cand`
+ * in rt_scene.ray_oct's for the ray's octant; from below, those in ray_in's first, and all of
+ * them only where that search does not find i. The same result as testing every object of
+ * `cand` (rt_scene_prepare: the objects left out cannot report a hit for the ray, or for ray_in
+ * only one beyond i's): `cand` may leave out only such objects too (the mirror candidates,
+ * rt_view_mirror_candidates, for a reflection off the view's mirror plane). */
+int rt_nearest_from(const rt_scene *s, vec3 org, dir3 d, real tmax, int from, uint32_t cand,
+                    real *t);
+
+/* rt_nearest_from's candidates: `cand` narrowed for a ray along d from `from`, with *need the
+ * sphere the first search must find (ray_in's objects) or -1. */
+static inline uint32_t rt_ray_cand(const rt_scene *s, int from, dir3 d, uint32_t cand, int *need)
+{
+    *need = -1;
+    if (from >= 0) {
+        const int a = from >> 1;
+        if (RT_RAY_SETS) { /* a plane's ray_oct leaves out the plane itself */
+            cand &= s->ray_oct[a][rt_octant(d)];
+            if ((from & 1) && s->ray_in[a] != 0xFFFFFFFFu)
+                *need = a;
+        } else if (s->objects[a].kind == RT_PLANE) {
+            cand &= ~((uint32_t)1 << a);
+        }
+    }
+    return cand;
+}
+
+/* rt_nearest_from inlined into the caller (trace_ray on ARM, where its registers are free to
+ * work out the candidates and the loop stays rt_nearest_set's: fewer instructions there; on
+ * x86-64 the call measured fewer). */
+static inline __attribute__((always_inline)) int rt_nearest_from_in(const rt_scene *s, vec3 org,
+                                                                    dir3 d, real tmax, int from,
+                                                                    uint32_t cand, real *t)
+{
+    int need;
+    cand = rt_ray_cand(s, from, d, cand, &need);
+    int id = rt_nearest_set(s, org, d, tmax, need >= 0 ? cand & s->ray_in[need] : cand, t);
+    return need < 0 || id == need ? id : rt_nearest_set(s, org, d, tmax, cand, t);
+}
+
+/* The nearest object hit by the ray within (0, tmax), or -1: rt_nearest_set of every object. */
+static inline int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+{
+    return rt_nearest_set(s, org, d, tmax, ~(uint32_t)0, t);
+}
 
 /* rt_nearest without object `skip` (-1: none), for a ray that certainly cannot meet it (one
  * mirrored off a plane's front, from the offset origin). */
-int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t);
-
-/* rt_nearest_but testing only the objects in `cand` (bit i: object i), in the objects' order:
- * the same result when every object whose test could report a hit for this ray is in `cand`
- * (rt_view_mirror_candidates for a reflection off the view's mirror plane). */
-int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, uint32_t cand,
-                    real *t);
+static inline int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
+{
+    return rt_nearest_set(s, org, d, tmax, skip >= 0 ? ~((uint32_t)1 << skip) : ~(uint32_t)0, t);
+}
 
 /* rt_nearest for a ray from s->eye_at (a primary ray), the same result: the sphere test
  * starts from the frame's eye_l and eye_cull, the plane test from eye_num. Only the objects
@@ -521,6 +603,14 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
     vec3 to_light = v3_sub_in(li->pos, *p);
     if (!v3_faces(to_light, n))
         return 0;
+    /* A point seen from inside a sphere whose own shadow ray would certainly meet the sphere
+     * (dark_inside, p_out well inside): unlit, without the normalisation and the ray's tests;
+     * counted as the shadow ray it decides. */
+    if (RT_RAY_SETS && inside && st && (s->dark_inside[i] >> id & 1) &&
+        w_len2(v3_sub_in(*p_out, s->objects[id].center)) < w_sq(s->dark_r[id])) {
+        st->rays_shadow++;
+        return 0;
+    }
     const real dist = d3_norm_len(to_light, l);
     unit ndl = d3_dot(n, *l);
     if (ndl <= 0)

@@ -1,7 +1,7 @@
 /* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
 #include "rt.h"
 
-/* Always inlined into the loops over objects below (rt_shapes gets an out-of-line copy). */
+/* Always inlined into the loops over objects below (rt_intersect gets an out-of-line copy). */
 #define SHAPES_INLINE static inline __attribute__((always_inline))
 
 /* Sphere: the perpendicular from the centre to the ray is formed explicitly, which keeps the
@@ -25,7 +25,7 @@ SHAPES_INLINE int sphere_hit(const rt_object *o, vec3 l, real tca, dir3 d, real 
      * (docs/numerics.md, The sphere test) */
     if (tca > r_add_in(tmax, o->radius))
         return 0;
-    /* |l - d tca|^2, where it is not above r^2; `quick` (rt_nearest_but's secondary rays, which
+    /* |l - d tca|^2, where it is not above r^2; `quick` (rt_nearest_set's secondary rays, which
      * mostly miss by far) tests each component against r as it is formed (r_perp_within: the
      * same answer) */
     wide d2;
@@ -112,16 +112,22 @@ static dir3 plane_normal(const rt_object *o, vec3 p)
 }
 
 const rt_shape_ops rt_shapes[RT_SHAPE_COUNT] = {
-    [RT_SPHERE] = {sphere_intersect, sphere_normal},
-    [RT_PLANE] = {plane_intersect, plane_normal},
+    [RT_SPHERE] = {sphere_normal},
+    [RT_PLANE] = {plane_normal},
 };
 
-/* The loops below call the shape tests directly rather than through rt_shapes: the compiler
- * then inlines them, which saves the indirect call and the passing of the ray per object. */
+int rt_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
+{
+    return o->kind == RT_SPHERE ? sphere_intersect(o, org, d, tmax, t)
+                                : plane_intersect(o, org, d, tmax, t);
+}
 
-/* The plane test of rt_nearest_but, inlined there (on ARM too: once the tracer's other changes
+/* The loops below call the shape tests directly: the compiler then inlines them, which saves
+ * the call and the passing of the ray per object. */
+
+/* The plane test of rt_nearest_set, inlined there (on ARM too: once the tracer's other changes
  * were in, the inlined test measured 0.1% fewer instructions a frame than the out-of-line one,
- * and a smaller image): plane_intersect's result for rt_nearest_but's rays, whose origins are
+ * and a smaller image): plane_intersect's result for rt_nearest_set's rays, whose origins are
  * in the scene as the sphere test takes them (|org| <= 23478, docs/numerics.md) and whose tmax
  * is at most R_T_MAX. So |org . n| <= 23478 and, with |offset| <= 4096, |offset - org . n| is
  * below 27575: the numerator is formed without the range checks (v3_dot_d_in, r_add_in, the
@@ -133,16 +139,20 @@ static inline int shapes_plane(const rt_object *o, const vec3 *org, const dir3 *
                      t);
 }
 
-int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, real *t)
+/* The loop of rt_nearest_set: the nearest object of cand (within the scene's objects). */
+SHAPES_INLINE int shapes_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, uint32_t cand,
+                                 real *t)
 {
     int best = -1;
     /* a sphere's tca = (c - org) . d as c . d against the ray's part (v3_dot_part): l = c - org
      * is formed only for the spheres sphere_hit's first test does not reject */
     const dotpart od = v3_dot_part(org, d);
-    for (int i = 0; i < s->nobjects; i++) {
+    /* The objects' order (so the same tmax at every test), up to the last candidate: a bit
+     * shifted out per object (its test skipped when clear) */
+    for (int i = 0; cand; cand >>= 1, i++) {
         const rt_object *o = &s->objects[i];
         real hit;
-        if (i == skip)
+        if (!(cand & 1))
             continue;
         if (o->kind == RT_SPHERE) {
             real tca = v3_dot_d_from(o->center, d, od);
@@ -158,33 +168,29 @@ int rt_nearest_but(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, rea
     return best;
 }
 
-int rt_nearest(const rt_scene *s, vec3 org, dir3 d, real tmax, real *t)
+int rt_nearest_set(const rt_scene *s, vec3 org, dir3 d, real tmax, uint32_t cand, real *t)
 {
-    return rt_nearest_but(s, org, d, tmax, -1, t);
-}
-
-int rt_nearest_cand(const rt_scene *s, vec3 org, dir3 d, real tmax, int skip, uint32_t cand,
-                    real *t)
-{
-    int best = -1;
     if (s->nobjects < 32)
         cand &= ((uint32_t)1 << s->nobjects) - 1;
-    if (skip >= 0)
-        cand &= ~((uint32_t)1 << skip);
-    /* Set bits in increasing order: rt_nearest_but's order, so the same tmax at every test.
-     * The tests are rt_shapes' out-of-line copies (the same code): few objects are left to
-     * test, and the programs stay within their size limits. */
-    for (; cand; cand &= cand - 1) {
-        int i = __builtin_ctz(cand);
-        const rt_object *o = &s->objects[i];
-        real hit;
-        if (rt_shapes[o->kind].intersect(o, org, d, tmax, &hit)) {
-            tmax = hit;
-            best = i;
-        }
+    return shapes_nearest(s, org, d, tmax, cand, t);
+}
+
+int rt_nearest_from(const rt_scene *s, vec3 org, dir3 d, real tmax, int from, uint32_t cand,
+                    real *t)
+{
+    if (s->nobjects < 32)
+        cand &= ((uint32_t)1 << s->nobjects) - 1;
+    int need;
+    uint32_t all = rt_ray_cand(s, from, d, cand, &need);
+    cand = need >= 0 ? all & s->ray_in[need] : all;
+    /* one copy of the loop for both searches: the second, of every candidate, only where the
+     * first, of ray_in's, did not find `need` */
+    for (;;) {
+        int id = shapes_nearest(s, org, d, tmax, cand, t);
+        if (id == need || cand == all)
+            return id;
+        cand = all;
     }
-    *t = tmax;
-    return best;
 }
 
 int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
