@@ -398,6 +398,9 @@ typedef struct rt_stats {
     uint32_t shadow_squares;  /* adaptive: squares split only by one light's shadow edge, filled
                                  instead with each pixel's own test of that light (subsample.c) */
     uint32_t shadow_pixels;   /* adaptive: pixels of those squares whose light was tested */
+    uint32_t centre_tests;    /* adaptive: 2x2 squares split only for contributions whose
+                                 centre was traced first for the centre test (subsample.c) */
+    uint32_t contrib_kept;    /* adaptive: of those, filled unsplit (rt_centre_smooth) */
 } rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the
@@ -774,6 +777,15 @@ unsigned long rt_render_work_size(const rt_params *p, int width);
 /* Compares the four corner samples of a square (in any order); thr8 is the contribution
  * threshold in 1/255 colour steps. */
 enum rt_split_reason rt_corners_differ(const rt_sample *const corner[4], int thr8);
+
+/* The centre test of a square split only for its contributions (rt_corners_differ gave
+ * RT_SPLIT_CONTRIB for corner[0..3]: (0, 0), (w, 0), (0, h), (w, h)): 1 when the sample at its
+ * centre, mid, has the corners' shape (rt_probe_same with corner[0]: primary object, cell, light
+ * states, the objects and levels of its ray tree) and each stored node's contribution, in each
+ * channel, lies within tol (1/255 steps, >= 0) of the mean of either diagonal's ends (corner[0]
+ * and corner[3], corner[1] and corner[2]): the colour varies linearly along both diagonals, so
+ * it lies on the corners' bilinear mean too; else 0 (split). */
+int rt_centre_smooth(const rt_sample *const corner[4], const rt_sample *mid, int tol);
 
 /* Fills `cols` x `rows` pixels from dst (stride pixels per row) by bilinear interpolation of
  * the colours at the corners of a w x h square: c00 at (0, 0), c10 at (w, 0), c01 at (0, h),

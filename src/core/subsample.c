@@ -131,6 +131,26 @@ enum rt_split_reason rt_corners_differ(const rt_sample *const k[4], int thr8)
     return RT_SPLIT_NONE;
 }
 
+__attribute__((cold)) int rt_centre_smooth(const rt_sample *const k[4], const rt_sample *mid,
+                                           int tol)
+{
+    const rt_sample *a = k[0];
+    if (!rt_probe_same(a, mid)) /* its shape: the corners' (rt_corners_differ found them alike) */
+        return 0;
+    const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+    for (int j = 0; j < n; j++)
+        for (int ch = 0; ch < 3; ch++) {
+            /* 2 (mid - the mean of each diagonal's ends): no rounding enters */
+            const int m = 2 * mid->hits[j].contrib[ch];
+            const int d0 = m - a->hits[j].contrib[ch] - k[3]->hits[j].contrib[ch],
+                      d1 = m - k[1]->hits[j].contrib[ch] - k[2]->hits[j].contrib[ch];
+            if ((unsigned)(d0 + 2 * tol) > (unsigned)(4 * tol) ||
+                (unsigned)(d1 + 2 * tol) > (unsigned)(4 * tol)) /* |d| > 2 tol */
+                return 0;
+        }
+    return 1;
+}
+
 /* The fill works on integer channels: a colour in [0, 1] as its Q16.16 value, 0..65536
  * (r_unit_to_q16), and weights i / n as Q16.16 integers rounded to nearest. Its arithmetic is
  * the fixed-point build's r_lerp, r_mul and r_to_byte step for step (no intermediate value can
@@ -832,6 +852,44 @@ static __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const
     return 1;
 }
 
+/* A 2x2 square that does not end the frame, split by rt_corners_differ for a contribution
+ * (RT_SPLIT_CONTRIB: one object and cell, the same light states and ray tree), k[] its corners
+ * (sm: its (0, 0) in the lattice): the centre test. Traces its centre, one of the five points
+ * the split traces (as ss_quad traces it), and when rt_centre_smooth finds it of the corners'
+ * shape with every contribution within half the threshold of both diagonals' means, the colour
+ * varies smoothly there: fills the square's four pixels from its corners (ss_fill), the centre
+ * and the points a neighbour traced (the middles of its top and left edges) showing their
+ * traced colour as the fill shows a corner, takes the centre's record out of the lattice
+ * (which holds nothing inside a square that is not split) and returns 1. Else 0: split (the
+ * centre is kept for it). Half the threshold: where an edge cuts one corner off (the fill would
+ * smear it over the edges' middles), that corner's step, more than the threshold (the split's
+ * own reason), puts the centre more than half of it off that diagonal's mean, on either side of
+ * the edge, so such a square always splits. Out of line and cold (for size). */
+static __attribute__((cold, noinline)) int ss_centre(ss_ctx *c, rt_sample *sm,
+                                                     const rt_sample *const k[4], int x0, int y0)
+{
+    const int ls = c->lstride, stride = c->stride;
+    rt_sample *mid = sm + ls + 1;
+    const rt_params *p = c->params;
+    c->params = c->quad;
+    ss_need(c, x0 + 1, y0 + 1, mid);
+    c->params = p;
+    c->stats->centre_tests++;
+    if (!rt_centre_smooth(k, mid, c->thr8 / 2))
+        return 0;
+    c->stats->contrib_kept++;
+    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * stride + x0;
+    const rt_color *const kc[4] = {&k[0]->color, &k[1]->color, &k[2]->color, &k[3]->color};
+    ss_fill(dst, stride, 2, 2, 2, 2, kc);
+    dst[stride + 1] = ss_pixel(&mid->color);
+    if (sm[1].nhits)
+        dst[1] = ss_pixel(&sm[1].color);
+    if (sm[ls].nhits)
+        dst[stride] = ss_pixel(&sm[ls].color);
+    mid->nhits = 0;
+    return 1;
+}
+
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
  * (0, 0) in the lattice). It writes the pixels it owns: [x0, x0 + w) x [y0, y0 + h), plus its
  * right column and bottom row where it ends the frame (`own` bit 0 and bit 1). Every pixel is
@@ -860,6 +918,8 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
                 st->noise_squares++; /* filled with each pixel's texture instead */
                 return;
             }
+            if (why == RT_SPLIT_CONTRIB && w == 2 && h == 2 && !own && ss_centre(c, sm, k, x0, y0))
+                return; /* smooth at its centre: filled unsplit */
             if (why == RT_SPLIT_LIGHT && !own && ss_shadow(c, k, x0, y0, w, h)) {
                 st->shadow_squares++; /* filled with each pixel's own light test instead */
                 return;
