@@ -710,28 +710,39 @@ static inline FX_RENORM_INLINE dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
         return fx_norm64(x, y, z, 60, 0);
     return d;
 }
-/* fx_renorm of a vector whose length is within 2^-23 of one: each |component| < 2^61 and |e| <
- * 2^37, so fx_renorm's range checks pass and fx_renorm_q30's square term (3e^2/8, e / 2^20 below
- * 2^17 squared over 2^40) is 0: g = e / 2^21, the same result. Only for the mirrored direction
- * of unit vectors (d3_reflect_k, docs/numerics.md). The event-counting builds take fx_renorm and
- * count FX_EV_OVERFLOW where the bound fails (see r_mul_in). */
-static inline FX_RENORM_INLINE dir3 fx_renorm_unit(int64_t x, int64_t y, int64_t z)
+/* fx_renorm of a vector whose length is within 2^-23 of one, without its checks: each |component|
+ * < 2^61 and |e| < 2^37, so fx_renorm's range checks pass and fx_renorm_q30's square term (3e^2/8,
+ * e / 2^20 below 2^17 squared over 2^40) is 0: g = e / 2^21, the same result. The release builds'
+ * form of fx_renorm_unit, compiled in every build so that tests/test_numeric.c checks this very
+ * code against fx_renorm. */
+static inline FX_RENORM_INLINE dir3 fx_renorm_unit_fast(int64_t x, int64_t y, int64_t z)
 {
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
     int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    int32_t g = (int32_t)(e >> 21);
+    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
+              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
+              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
+    return d;
+}
+
+/* fx_renorm of a vector whose length is within 2^-23 of one: fx_renorm_unit_fast. Only for the
+ * mirrored direction of unit vectors (d3_reflect_k, docs/numerics.md). The event-counting builds
+ * take fx_renorm and count FX_EV_OVERFLOW where the bound fails (see r_mul_in). */
+static inline FX_RENORM_INLINE dir3 fx_renorm_unit(int64_t x, int64_t y, int64_t z)
+{
 #if FX_COUNT_EVENTS
+    int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
+            c = (int32_t)fx_round_shift(z, 30);
+    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
     const uint64_t two = (uint64_t)1 << 61;
     if ((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
         (uint64_t)z + two >= 2 * two || e >= ((int64_t)1 << 37) || e <= -((int64_t)1 << 37))
         FX_EVENT(FX_EV_OVERFLOW);
     return fx_renorm(x, y, z);
 #else
-    int32_t g = (int32_t)(e >> 21);
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
-              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
-              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
-    return d;
+    return fx_renorm_unit_fast(x, y, z);
 #endif
 }
 #else

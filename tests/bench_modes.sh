@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # bench_modes.sh: what each mode (full, adaptive, probe) costs in exact instruction counts, on the desktop (callgrind) and on the ARM926 (QEMU icount) (make bench-modes).
 # Wall-clock times on a shared machine are too noisy for a 1% question such as "is probe mode 3x
-# cheaper than full mode?" (docs/probe.md); instruction counts are exact and repeatable. For each
+# cheaper than full mode?" (docs/probe.md); instruction counts are exact and repeatable (the
+# tracing column exactly; the whole run's start-up varies by a few hundred instructions). For each
 # build it runs `render --frames RANGE --step STEP --threads 1 --checksum --mode M` under
 # callgrind and prints the whole run's instructions and the tracing's own (frame_render and what
 # it calls: the frames' pixels, without start-up, scene evaluation and the checksum), then the
@@ -12,6 +13,13 @@
 set -eu
 cd "$(dirname "$0")/.."
 first=${1:-0} last=${2:-1200} step=${3:-100}
+for v in "$first" "$last" "$step"; do
+  case $v in '' | *[!0-9]*)
+    echo "bench_modes.sh: FIRST LAST STEP must be frame numbers, e.g. 0 1200 100 (got '$v')" >&2
+    exit 2
+    ;;
+  esac
+done
 modes=${MODES:-full adaptive probe}
 for m in $modes; do
   case $m in full | adaptive | probe) ;; *)
@@ -43,8 +51,16 @@ for real in fixed float; do
   for m in $modes; do
     echo "bench-modes: rt-$real --mode $m under callgrind..." >&2
     valgrind --tool=callgrind --callgrind-out-file="$out/cg.$real.$m" "build/rt-$real" render \
-      --frames "$first-$last" --step "$step" --threads 1 --checksum --mode "$m" >/dev/null 2>"$out/log"
+      --frames "$first-$last" --step "$step" --threads 1 --checksum --mode "$m" >/dev/null 2>"$out/log" || {
+      echo "bench_modes.sh: rt-$real render --mode $m failed under callgrind:" >&2
+      grep -v '^==' "$out/log" | tail -5 >&2
+      exit 1
+    }
     read -r tot[$m] trc[$m] <<<"$(counts "$out/cg.$real.$m")"
+    if [ "${tot[$m]}" = 0 ] || [ "${trc[$m]}" = 0 ]; then
+      echo "bench_modes.sh: no instruction count in callgrind's profile of rt-$real --mode $m" >&2
+      exit 1
+    fi
   done
   for m in $modes; do
     awk -v w="x86-64 rt-$real" -v m="$m" -v t="${tot[$m]}" -v r="${trc[$m]}" \
@@ -65,6 +81,10 @@ if [ "${BOARD:-1}" != 0 ]; then
     }
     mean[$m]=$(sed -n 's/^frames=[0-9]* mean=//p' "$out/board.$m")
     worst[$m]=$(sed -n 's/^worst=//p' "$out/board.$m")
+    if [ -z "${mean[$m]}" ] || [ -z "${worst[$m]}" ]; then
+      echo "bench_modes.sh: no instruction count in the board's output for --mode $m" >&2
+      exit 1
+    fi
   done
   printf '%-22s %-9s %15s %9s %15s %9s\n' where mode mean x_full worst x_full
   for m in $modes; do

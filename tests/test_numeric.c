@@ -1751,14 +1751,7 @@ static void test_reflect_unit(void **state)
                           ldexp((double)z, -60) * ldexp((double)z, -60));
         if (fabs(len - 1) > worst)
             worst = fabs(len - 1);
-        /* the release build's steps */
-        int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
-                c = (int32_t)fx_round_shift(z, 30);
-        int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
-        int32_t g = (int32_t)(e >> 21);
-        dir3 fast = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
-                     b - (int32_t)fx_round_shift((int64_t)b * g, 40),
-                     c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
+        dir3 fast = fx_renorm_unit_fast(x, y, z); /* the release builds' form */
         dir3 want = fx_renorm(x, y, z), got = d3_reflect_k(d, n, dn);
         if (fast.x != want.x || fast.y != want.y || fast.z != want.z || got.x != want.x ||
             got.y != want.y || got.z != want.z) {

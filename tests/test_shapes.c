@@ -1150,12 +1150,12 @@ static void test_ray_sets(void **state)
                 o2 = v3_along(p, nrm, r_neg(R_EPS_OFFSET));
                 into = !inside;
             }
-            real t1, t2;
+            real t1, t2, t_in;
             int want = rt_nearest_set(&s, o2, rd, R_T_MAX, ~(uint32_t)0, &t1);
             int got = rt_nearest_from(&s, o2, rd, R_T_MAX, 2 * a + into, ~(uint32_t)0, &t2);
             uint32_t cand = s.ray_oct[a][rt_octant(rd)], all = ((uint32_t)1 << s.nobjects) - 1;
             uint32_t in = cand & s.ray_in[a];
-            if (into && rt_nearest_set(&s, o2, rd, R_T_MAX, in, &t1) != a) {
+            if (into && rt_nearest_set(&s, o2, rd, R_T_MAX, in, &t_in) != a) {
                 again++;
                 in = cand; /* searched again with ray_oct's */
             }

@@ -608,8 +608,10 @@ static inline __attribute__((always_inline)) unit rt_light_reach(const rt_scene 
         return 0;
     /* A point seen from inside a sphere whose own shadow ray would certainly meet the sphere
      * (dark_inside, p_out well inside): unlit, without the normalisation and the ray's tests;
-     * counted as the shadow ray it decides. */
-    if (RT_RAY_SETS && inside && st && (s->dark_inside[i] >> id & 1) &&
+     * counted as the shadow ray it decides. (A bit is set only where the sphere occludes the
+     * light, which turns the shadow effect on; a build compiled without shadows has none.) */
+    if (RT_RAY_SETS && (RT_COMPILED_EFFECTS & RT_FX_SHADOW) && inside && st &&
+        (s->dark_inside[i] >> id & 1) &&
         w_len2(v3_sub_in(*p_out, s->objects[id].center)) < w_sq(s->dark_r[id])) {
         st->rays_shadow++;
         return 0;
