@@ -830,21 +830,28 @@ static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_p
     return sp.rays_primary;
 }
 
+/* Flat-shaded surfaces (no light: each object one colour): a slanted wall standing on the
+ * floor, seen from above at an angle. */
+static void wall_scene(rt_scene *s)
+{
+    scene_base(s);
+    s->nlights = 0;
+    int mf = add_material(s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
+    int mw = add_material(s, (rt_material){.diffuse = vd(0.2, 0.3, 0.8), .ambient = from_d(1)});
+    add_floor(s, mf);
+    rt_object *o = &s->objects[s->nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
+    o->axis = vd(1, 0, 0.4);
+    s->camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
+}
+
 /* Flat-shaded surfaces (no light: each object one colour) cut by a straight edge, a slanted wall
  * standing on the floor: both sides come out exactly, with far fewer points shaded. */
 static void test_probe_straight_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    s.nlights = 0;
-    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
-    int mw = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.3, 0.8), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    rt_object *o = &s.objects[s.nobjects++];
-    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
-    o->axis = vd(1, 0, 0.4);
-    s.camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
+    wall_scene(&s);
     uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge", 0);
     rt_stats sa = {0};
     rt_params pa = {
@@ -905,15 +912,7 @@ static void test_probe_point_edge(void **state)
 {
     (void)state;
     static rt_scene s;
-    scene_base(&s);
-    s.nlights = 0;
-    int mf = add_material(&s, (rt_material){.diffuse = vd(0.7, 0.7, 0.6), .ambient = from_d(1)});
-    int mw = add_material(&s, (rt_material){.diffuse = vd(0.2, 0.3, 0.8), .ambient = from_d(1)});
-    add_floor(&s, mf);
-    rt_object *o = &s.objects[s.nobjects++];
-    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
-    o->axis = vd(1, 0, 0.4);
-    s.camera = (rt_camera){vd(-2, 4, 8), vd(1, 0, 0), vd(0, 1, 0), from_d(50)};
+    wall_scene(&s);
     rt_scene_prepare(&s);
     rt_view v;
     rt_view_init(&v, &s.camera, W, H);
