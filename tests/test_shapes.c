@@ -1189,11 +1189,16 @@ static void test_dark_inside(void **state)
 {
     (void)state;
     static rt_scene s, plain;
-    int n = 60000, tried = 0, dark = 0, lit = 0;
+    int n = 60000, tried = 0, edge_tried = 0, dark = 0, lit = 0;
     fx_events_reset();
     for (int i = 0; i < n; i++) {
-        double base = i % 8 == 0 ? rnd(-1500, 1500) : 0;
-        double r = i % 3 == 0 ? rnd(0.05, 0.5) : i % 3 == 1 ? rnd(0.5, 3) : rnd(3, 200);
+        /* near the origin, anywhere within +-1500, or near the scene's edge (+-R_SCENE_MAX,
+         * 4096: every position of the case, lights and eye included, within +-3960) */
+        const int edge = i % 16 == 4;
+        double base = i % 8 == 0 ? rnd(-1500, 1500)
+            : edge               ? (i & 32 ? 1 : -1) * rnd(3700, 3800)
+                                 : 0;
+        double r = i % 3 == 0 ? rnd(0.05, 0.5) : i % 3 == 1 ? rnd(0.5, 3) : rnd(3, edge ? 30 : 200);
         s = (rt_scene){0};
         s.nobjects = 3;
         s.nlights = 2;
@@ -1212,7 +1217,7 @@ static void test_dark_inside(void **state)
             s.lights[l].pos = vd(cx + ux / un * dl, cy + uy / un * dl, cz + uz / un * dl);
             s.lights[l].color = v3(R_ONE, R_ONE, R_ONE);
         }
-        s.camera.eye = vd(base, base + 1000, base);
+        s.camera.eye = vd(base, base + (edge ? 100 : 1000), base);
         rt_scene_prepare(&s);
         plain = s;
         for (int l = 0; l < RT_MAX_LIGHTS; l++)
@@ -1249,14 +1254,17 @@ static void test_dark_inside(void **state)
                          "(case %d, radius %g)",
                          l, got, want, i, r);
             tried++;
+            edge_tried += edge;
             dark += st.shadow_tests < st_plain.shadow_tests;
             lit += want != 0;
         }
     }
-    print_message("dark inside: %d light tests from inside, %d decided by the shortcut, %d lit\n",
-                  tried, dark, lit);
+    print_message("dark inside: %d light tests from inside (%d near the scene's edge), %d decided "
+                  "by the shortcut, %d lit\n",
+                  tried, edge_tried, dark, lit);
     assert_true(tried > n / 2);
     assert_true(dark > tried / 6);
+    assert_true(edge_tried > tried / 40);
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
