@@ -1,6 +1,22 @@
 /* prepare.c: derived scene data: per-frame constants, culling, and the effects a scene needs. */
 #include "rt.h"
 
+/* The absolute slack terms of the proven margins below (each proof says which it takes and
+ * why): powers of two, exact in both builds and far above half a Q16.16 step (2^-17). */
+#define PREP_SLACK_10 R(0.0009765625) /* 2^-10 */
+#define PREP_SLACK_8 R(0.00390625)    /* 2^-8 */
+#define PREP_SLACK_7 R(0.0078125)     /* 2^-7 */
+#define PREP_SLACK_6 R(0.015625)      /* 2^-6 */
+
+/* delta of the occluder and candidate sets' proofs (scene_shadow_pairs, scene_ray_sets): how far
+ * a point the tracer takes to lie on a sphere of the scene may be off it, the unit vectors'
+ * length error at the scene's size and two R_EPS_OFFSET included. A constant in range. */
+static real scene_delta(void)
+{
+    return r_add_in(r_add_in(PREP_SLACK_8, r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
+                    r_muli(R_EPS_OFFSET, 2));
+}
+
 /* Signed distance of p from the plane o (positive on the side its normal points to). */
 static real scene_side(const rt_object *plane, vec3 p)
 {
@@ -178,7 +194,7 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach, real *cone)
     vec3 c = v3_sub(o->center, lp);
     wide d2 = w_len2(c);
     real d = r_sqrt_w(d2);
-    real margin = r_add(R(0.0009765625), r_shr(r_add(d, o->radius), 14));
+    real margin = r_add(PREP_SLACK_10, r_shr(r_add(d, o->radius), 14));
     real big_r = r_add(r_add(o->radius, reach), margin);
     real e = r_add(r_shr(d, U_LEN_ERR_SHIFT), r_muli(R_LSB, 2));
     /* D < 14190 and R, E small against it inside the scene cube: no term saturates */
@@ -247,7 +263,7 @@ real rt_scene_mirror_cone(const rt_scene *s, int pl, int i, vec3 *l)
         return 0;
     vec3 lc = v3_sub(m.center, s->eye_at);
     real dist = r_sqrt_w(w_len2(lc));
-    real reach = r_add(r_add(r_muli(R_EPS_OFFSET, 2), R(0.0078125)),
+    real reach = r_add(r_add(r_muli(R_EPS_OFFSET, 2), PREP_SLACK_7),
                        r_shr(r_add(r_add(dist, o->radius), r_muli(r_abs(side), 2)), 10));
     real cone = 0;
     if (scene_cull(&m, s->eye_at, reach, &cone) <= 0 || cone <= 0)
@@ -293,7 +309,7 @@ static void scene_bound(rt_scene *s)
             radius = r_max(radius, r_add(r_sqrt_w(w_len2(v3_sub(o->center, c))), o->radius));
     }
     /* rounded up: the square root's rounding (half a step fixed, 2^-24 relative float) */
-    radius = r_add(r_add(radius, R(0.0009765625)), r_shr(radius, 14));
+    radius = r_add(r_add(radius, PREP_SLACK_10), r_shr(radius, 14));
     rt_object b = {.kind = RT_SPHERE, .center = c, .radius = radius};
     s->bound_set = set;
     s->bound_center = c;
@@ -351,7 +367,7 @@ static __attribute__((cold, noinline)) void scene_shadow_quads(rt_scene *s, int 
         if (o->kind != RT_SPHERE || cone[i] <= 0 || v3_is_zero(c))
             continue;
         dir3 uc = d3_norm(c, 0);
-        real lim = r_add(cone[i], R(0.0009765625));
+        real lim = r_add(cone[i], PREP_SLACK_10);
         for (int j = 0; j < 2; j++) {
             real un = u_to_real(d3_dot(uc, n[j]));
             /* u . n > 0 throughout: left out where d . n >= 0 (bit j clear), and conversely */
@@ -419,8 +435,7 @@ static real scene_cos_of(real sn)
 static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int l,
                                                                const real cone[])
 {
-    const real delta = r_add(r_add(R(0.00390625), r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
-                             r_muli(R_EPS_OFFSET, 2));
+    const real delta = scene_delta();
     const vec3 lp = s->lights[l].pos;
     for (int a = 0; a < s->nobjects; a++) {
         const rt_object *oa = &s->objects[a];
@@ -449,7 +464,7 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
                     continue;
                 }
                 real db = r_sqrt_w(w_len2(vb)), sb = cone[b];
-                real m = r_add_in(R(0.0009765625), r_shr(r_add_in(db, ob->radius), 12));
+                real m = r_add_in(PREP_SLACK_10, r_shr(r_add_in(db, ob->radius), 12));
                 wide dot = w_add(w_add(w_mul(va.x, vb.x), w_mul(va.y, vb.y)), w_mul(va.z, vb.z));
                 /* beyond the segment's reach, or its cone apart from the receiver's */
                 if (r_add_in(db, r_neg_in(r_add_in(ob->radius, m))) > reach ||
@@ -523,8 +538,7 @@ __attribute__((target("thumb"))) /* the ARM926 image: Thumb, as ARM_COLD_SRCS (M
 static __attribute__((cold, noinline)) void
 scene_ray_sets(rt_scene *s)
 {
-    const real delta = r_add_in(r_add_in(R(0.00390625), r_shr(R_SCENE_MAX, U_LEN_ERR_SHIFT - 3)),
-                                r_muli(R_EPS_OFFSET, 2));
+    const real delta = scene_delta();
     int last_plane = -1;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
         s->dark_inside[l] = 0;
@@ -543,13 +557,13 @@ scene_ray_sets(rt_scene *s)
         if (oa->kind != RT_SPHERE)
             continue;
         real rho = r_add_in(oa->radius, delta);
-        real ma = r_add_in(R(0.0009765625), r_shr(r_add_in(rho, oa->radius), 12));
+        real ma = r_add_in(PREP_SLACK_10, r_shr(r_add_in(rho, oa->radius), 12));
         /* dark_r, dark_inside (the proof above) */
-        real mi = r_add_in(R(0.0009765625), r_shr(oa->radius, U_LEN_ERR_SHIFT - 4));
+        real mi = r_add_in(PREP_SLACK_10, r_shr(oa->radius, U_LEN_ERR_SHIFT - 4));
         s->dark_r[a] = oa->radius > mi ? r_add_in(oa->radius, r_neg_in(mi)) : 0;
         for (int l = 0; l < s->nlights; l++) {
             real dl = r_sqrt_w(w_len2(v3_sub_in(s->lights[l].pos, oa->center)));
-            real ml = r_add_in(r_add_in(r_muli(R_EPS_OFFSET, 2), R(0.015625)),
+            real ml = r_add_in(r_add_in(r_muli(R_EPS_OFFSET, 2), PREP_SLACK_6),
                                r_shr(r_add_in(dl, oa->radius), U_LEN_ERR_SHIFT - 8));
             if ((s->occluders[l] >> a & 1) && s->dark_r[a] > 0 &&
                 dl > r_add_in(r_add_in(oa->radius, ml), r_muli(R_LSB, 2)))
@@ -564,8 +578,8 @@ scene_ray_sets(rt_scene *s)
             real l1 = 0;
             for (int k = 0; k < 3; k++)
                 l1 = r_add_in(l1, vk[k] < 0 ? r_neg_in(vk[k]) : vk[k]);
-            real m = r_add_in(R(0.0009765625), r_shr(r_add_in(r_add_in(l1, rho), ob->radius), 12));
-            real reach = r_add_in(r_add_in(r_add_in(rho, ob->radius), m), R(0.00390625));
+            real m = r_add_in(PREP_SLACK_10, r_shr(r_add_in(r_add_in(l1, rho), ob->radius), 12));
+            real reach = r_add_in(r_add_in(r_add_in(rho, ob->radius), m), PREP_SLACK_8);
             /* the octants B stays in: bit q of `keep` (0xAA, 0xCC, 0xF0: those with bit k set) */
             unsigned keep = 0xFF;
             for (int k = 0; k < 3; k++) {
