@@ -30,6 +30,12 @@ for m in $modes; do
     ;;
   esac
 done
+runs=${RUNS:-5}
+case $runs in '' | *[!0-9]* | 0)
+  echo "bench_modes.sh: RUNS must be a whole number of runs, 1 or more (got '$runs')" >&2
+  exit 2
+  ;;
+esac
 command -v valgrind >/dev/null || {
   echo "bench_modes.sh: valgrind is missing (./setup.sh --test installs it)" >&2
   exit 2
@@ -78,12 +84,6 @@ done
 # not give time on an out-of-order core: the points the subsampled modes shade are the branchy,
 # incoherent ones (edges, secondary rays), so they run at fewer instructions per cycle than full
 # mode's (docs/probe.md), and the time ratio is below the instruction ratio.
-runs=${RUNS:-5}
-case $runs in '' | *[!0-9]* | 0)
-  echo "bench_modes.sh: RUNS must be a whole number of runs, 1 or more (got '$runs')" >&2
-  exit 2
-  ;;
-esac
 printf '%-22s %-9s %15s %9s\n' where mode tracing_ms x_full
 for real in fixed float; do
   declare -A ms=()
