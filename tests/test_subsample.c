@@ -407,6 +407,9 @@ static void test_interpolate_exact(void **state)
 
 #define W 96
 #define H 72
+/* The error allowed on a reflection's edge where the local parts were interpolated (ss_local):
+ * measured 1 level in both builds. */
+#define TS_LOCAL_ERR 1
 
 static rt_sample full[H][W];
 static uint32_t fullpx[H * W], adpx[H * W];
@@ -490,11 +493,24 @@ static int px_near(uint32_t a, uint32_t b)
     return 1;
 }
 
+/* The largest difference of two pixels in a channel, in levels. */
+static int px_diff(uint32_t a, uint32_t b)
+{
+    int m = 0;
+    for (int sh = 0; sh < 24; sh += 8) {
+        const int d = abs((int)(a >> sh & 255) - (int)(b >> sh & 255));
+        m = d > m ? d : m;
+    }
+    return m;
+}
+
 /* Renders the scene in full (every sample kept) and adaptive mode. For every pair of
  * neighbouring pixels whose full samples differ for `reason` (as the adaptive render's own
  * threshold sees them: a shadow or reflection too faint to show is no edge), checks that the
  * adaptive render traced both pixels (the squares along the edge were split down to 1x1) and shows
- * the full render's colours there (within a level where check_edge says). Returns the number of such pairs. */
+ * the full render's colours there (within a level where check_edge says; within TS_LOCAL_ERR
+ * levels on a reflection's edge, where the points' local parts were interpolated). Returns the
+ * number of such pairs. */
 static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
 {
     rt_scene_prepare(s);
@@ -515,7 +531,8 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
     assert_true(rt_render_work_size(&pa, W) <= sizeof work);
     rt_render(s, &v, &pa, adpx, W, &sa, work, traced);
 
-    int pairs = 0, both = 0, exact = 0, boundary = 0, other_pairs = 0;
+    int pairs = 0, both = 0, exact = 0, boundary = 0, other_pairs = 0, local_err = 0;
+    const int local = reason == RT_SPLIT_SECONDARY && sa.local_points > 0;
     for (int y = 0; y < H; y++) {
         for (int x = 0; x < W; x++) {
             for (int d = 0; d < 2; d++) {
@@ -536,21 +553,27 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
                     both++;
                     /* exact, but on a grid row's boundary (y a multiple of the grid), where
                      * within a level (below) */
-                    const int ep =
-                        adpx[p] == fullpx[p] || (y % pa.grid == 0 && px_near(adpx[p], fullpx[p]));
-                    const int eq =
-                        adpx[q] == fullpx[q] || (y2 % pa.grid == 0 && px_near(adpx[q], fullpx[q]));
+                    const int dp = px_diff(adpx[p], fullpx[p]), dq = px_diff(adpx[q], fullpx[q]);
+                    local_err = dp > local_err ? dp : local_err;
+                    local_err = dq > local_err ? dq : local_err;
+                    const int ep = !dp || (local && dp <= TS_LOCAL_ERR) ||
+                        (y % pa.grid == 0 && px_near(adpx[p], fullpx[p]));
+                    const int eq = !dq || (local && dq <= TS_LOCAL_ERR) ||
+                        (y2 % pa.grid == 0 && px_near(adpx[q], fullpx[q]));
                     exact += ep && eq;
                     boundary += (ep && adpx[p] != fullpx[p]) || (eq && adpx[q] != fullpx[q]);
                 }
             }
         }
     }
-    print_message("%s: %d neighbour pairs differ by that criterion (%d by others), %d traced "
-                  "on both sides, %d of those exact (%d within a level on a grid row's boundary); "
-                  "%lu of %d pixels traced, %lu 2x2 squares split\n",
-                  name, pairs, other_pairs, both, exact, boundary, (unsigned long)sa.rays_primary,
-                  W * H, (unsigned long)sa.split[2]);
+    print_message(
+        "%s: %d neighbour pairs differ by that criterion (%d by others), %d traced "
+        "on both sides, %d of those exact (%d within a level: on a grid row's boundary, or "
+        "with interpolated local parts); "
+        "%lu of %d pixels traced (%lu with interpolated local parts), %lu 2x2 squares "
+        "split; largest error on the edge %d levels\n",
+        name, pairs, other_pairs, both, exact, boundary, (unsigned long)sa.rays_primary, W * H,
+        (unsigned long)sa.local_points, (unsigned long)sa.split[2], local_err);
     assert_true(pairs >= 40); /* the scene does show that kind of edge */
     /* Every pixel on either side of it was traced, except where a curved outline bulges
      * between two corners that agree: what no corner sees, no criterion can split for. */
@@ -601,19 +624,172 @@ static void test_reflected_outline(void **state)
             assert_int_equal(full[y][x].hits[0].object, 0); /* the sphere is not seen directly */
 }
 
+/* rt_trace_pixel_local: a point whose primary hit is on the object and cell given takes the
+ * local part given (node 0's contribution, the light states) and traces its secondary rays as a
+ * full shade does; any other point (another object, the background, another checker cell) is
+ * shaded in full, its record and colour those of rt_trace_pixel. */
+static void test_local_part(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    mirror_scene(&s);
+    /* a two-tone checker on the mirror floor: cells to tell apart */
+    s.materials[0].tex =
+        (rt_texture){.kind = RT_TEX_CHECKER, .scale = from_d(0.5), .color2 = vd(0.5, 0.2, 0.2)};
+    s.lights[0].pos = vd(3, 12, 4);
+    s.camera = (rt_camera){vd(0, 2.5, 6), vd(0, 1.5, -3), vd(0, 1, 0), from_d(50)};
+    rt_scene_prepare(&s);
+    rt_view v;
+    rt_view_init(&v, &s.camera, W, H);
+    const rt_params p = {.depth = s.depth, .mode = RT_MODE_ADAPTIVE};
+    const real g[2] = {from_d(0.25), from_d(0.75)};
+    int taken = 0, reflecting = 0, other = 0, other_cell = 0;
+    for (int y = 0; y < H; y += 3)
+        for (int x = 0; x < W; x += 3) {
+            rt_sample f, l[2];
+            rt_stats sf = {0};
+            rt_trace_pixel(&s, &v, &p, x, y, &sf, &f);
+            /* the nodes stored (those past them are not written) */
+            const size_t nodes = f.nhits < RT_SAMPLE_MAX_HITS ? f.nhits : RT_SAMPLE_MAX_HITS;
+            for (int cell = 0; cell < 2; cell++) {
+                /* given for the floor, its cell (the point's own, or another), lights unlike the
+                 * point's own */
+                const uint8_t given_cell = (uint8_t)(cell ? f.cell % 64 + 1 : f.cell);
+                rt_stats sl[2] = {{0}, {0}};
+                for (int n = 0; n < 2; n++) {
+                    const rt_local loc = {.col = v3(g[n], g[n], g[n]),
+                                          .id = 0,
+                                          .cell = given_cell,
+                                          .lights = (uint8_t)(f.lights ^ 1)};
+                    rt_trace_pixel_local(&s, &v, &p, x, y, &loc, &sl[n], &l[n]);
+                }
+                if (f.hits[0].object != 0 || given_cell != f.cell) {
+                    /* shaded in full: the same record and colour */
+                    for (int n = 0; n < 2; n++) {
+                        assert_int_equal(sl[n].local_points, 0);
+                        assert_int_equal(l[n].head, f.head);
+                        assert_int_equal(l[n].alt_known, f.alt_known);
+                        assert_memory_equal(l[n].hits, f.hits, nodes * sizeof f.hits[0]);
+                        assert_memory_equal(&l[n].color, &f.color, sizeof f.color);
+                    }
+                    other += f.hits[0].object != 0 && !cell;
+                    other_cell += f.hits[0].object == 0 && given_cell != f.cell;
+                    continue;
+                }
+                taken++;
+                reflecting += f.nhits > 1;
+                for (int n = 0; n < 2; n++) {
+                    assert_int_equal(sl[n].local_points, 1);
+                    assert_int_equal(l[n].lights, f.lights ^ 1);
+                    assert_int_equal(l[n].cell, f.cell);
+                    assert_int_equal(l[n].nhits, f.nhits);
+                    assert_int_equal(l[n].alt_known, 0); /* no other tone */
+                    for (int ch = 0; ch < 3; ch++)
+                        assert_int_equal(l[n].hits[0].contrib[ch], r_to_byte(g[n]));
+                    /* the secondary nodes as the full shade's */
+                    if (nodes > 1)
+                        assert_memory_equal(&l[n].hits[1], &f.hits[1],
+                                            (nodes - 1) * sizeof f.hits[0]);
+                    /* no light's term at the primary hit: at most its shadow rays fewer */
+                    assert_true(sl[n].rays_shadow <= sf.rays_shadow);
+                    assert_int_equal(sl[n].rays_reflect, sf.rays_reflect);
+                }
+                /* the colour is the local part given plus the secondary rays' */
+                const int32_t d = r_unit_to_q16(r_sub(l[1].color.x, l[0].color.x)) -
+                    r_unit_to_q16(r_sub(g[1], g[0]));
+                assert_true(d >= -1 && d <= 1);
+            }
+        }
+    print_message("local parts: %d points took the one given (%d with a reflection); %d on "
+                  "another object, %d in another cell shaded in full\n",
+                  taken, reflecting, other, other_cell);
+    assert_true(reflecting > 20 && other > 20 && other_cell > 20);
+}
+
 /* ---- the adaptive recursion against a plain reference ------------------------------------ */
 
-/* The thesis' recursion written plainly over samples traced at every pixel (full[][]): corners
- * every g pixels, a square halved while rt_corners_differ finds a reason, a leaf filled by
- * rt_interpolate over the pixels it owns, where points known before on its top row and left
- * column show their traced colour. Known: traced within this grid square, its grid corners, and
- * its left side as the square before in the row left it (the points a square of the row above
- * traced on the shared side are not kept: the lattice holds one grid square). rt_render_adaptive's bookkeeping (corner rows, the lattice and what it keeps
- * from the square before, the 2x2 and one-colour shortcuts) must give exactly these pixels and
- * this set of traced points. */
+/* The thesis' recursion written plainly: corners every g pixels, a square halved while
+ * rt_corners_differ finds a reason, a leaf filled by rt_interpolate over the pixels it owns,
+ * where points known before on its top row and left column show their traced colour. Known:
+ * traced within this grid square, its grid corners, and its left side as the square before in
+ * the row left it (the points a square of the row above traced on the shared side are not kept:
+ * the lattice holds one grid square). A point is traced (into cur[][]) when a square first needs
+ * it: in full (full[][]), or, where a square split for its secondary rays whose corners agree
+ * on their primary hit's lights and local part (ref_local_ok) adds it, with its local part the
+ * bilinear interpolation of theirs (rt_trace_pixel_local). rt_render_adaptive's bookkeeping
+ * (corner rows, the lattice and what it keeps from the square before, the 2x2 and one-colour
+ * shortcuts, ss_local's means) must give exactly these pixels and this set of traced points. */
 static uint32_t refpx[H * W];
 static uint8_t refused[H * W], refknown[H * W];
-static long ref_kept; /* 2x2 squares the centre test filled unsplit */
+static long ref_kept;  /* 2x2 squares the centre test filled unsplit */
+static long ref_local; /* points traced with their local part interpolated */
+static rt_sample cur[H][W];
+static const rt_scene *ref_scene;
+static const rt_view *ref_view;
+static const rt_params *ref_params;
+/* The square whose split adds the points traced now, when its corners qualify: its corners and
+ * its (0, 0) and size; ref_area_k[0] NULL: none. */
+static const rt_sample *ref_area_k[4];
+static int ref_area[4];
+
+/* May the points a square split for its secondary rays adds (corners k[], w x h) take their
+ * local parts from the corners? The rule as docs/tracer.md states it, written out. */
+static int ref_local_ok(const rt_sample *const k[4], int w, int h, int thr8)
+{
+    const int id = k[0]->hits[0].object;
+    if (id == RT_NO_OBJECT || (k[0]->lights & RT_LIGHTS_HIGHLIGHT))
+        return 0;
+    const rt_texture *tx = &ref_scene->materials[ref_scene->objects[id].material].tex;
+    if (tx->active && tx->kind != RT_TEX_CHECKER)
+        return 0;                          /* a noise texture */
+    for (int side = 0; side < 2; side++) { /* 0, 1, 2, 4, 8 or 16 */
+        const int n = side ? h : w;
+        if (n != 0 && n != 1 && n != 2 && n != 4 && n != 8 && n != 16)
+            return 0;
+    }
+    for (int i = 1; i < 4; i++)
+        if (k[i]->lights != k[0]->lights)
+            return 0;
+    for (int ch = 0; ch < 3; ch++)
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++)
+                if (k[i]->hits[0].contrib[ch] - k[j]->hits[0].contrib[ch] > thr8)
+                    return 0;
+    return 1;
+}
+
+/* Point (x, y), traced the first time a square needs it (see above); returns its sample. */
+static const rt_sample *ref_need(int wi, int x, int y)
+{
+    const int at = y * wi + x;
+    if (!refknown[at]) {
+        if (ref_area_k[0]) {
+            /* bilinear weights at the point, each side's n = 1 where it is 0 long */
+            const int x0 = ref_area[0], y0 = ref_area[1], w = ref_area[2], h = ref_area[3];
+            const int wx[2] = {w ? x0 + w - x : 1, x - x0}, wy[2] = {h ? y0 + h - y : 1, y - y0};
+            const long n = (long)(wx[0] + wx[1]) * (wy[0] + wy[1]);
+            rt_local loc = {.id = ref_area_k[0]->hits[0].object,
+                            .cell = ref_area_k[0]->cell,
+                            .lights = ref_area_k[0]->lights};
+            real q[3];
+            for (int ch = 0; ch < 3; ch++) {
+                long sum = 0;
+                for (int m = 0; m < 4; m++)
+                    sum += (long)ref_area_k[m]->hits[0].contrib[ch] * wx[m & 1] * wy[m >> 1];
+                /* the byte b as b 257 / 2^16, the mean rounded to nearest */
+                q[ch] = r_from_q16((int32_t)((sum * 257 + n / 2) / n));
+            }
+            loc.col = v3(q[0], q[1], q[2]);
+            rt_stats st = {0};
+            rt_trace_pixel_local(ref_scene, ref_view, ref_params, x, y, &loc, &st, &cur[y][x]);
+            ref_local += st.local_points;
+        } else {
+            cur[y][x] = full[y][x];
+        }
+    }
+    refused[at] = refknown[at] = 1;
+    return &cur[y][x];
+}
 
 static int ref_corner(int i, int g, int n)
 {
@@ -623,32 +799,47 @@ static int ref_corner(int i, int g, int n)
 
 static void ref_square(int wi, int x0, int y0, int w, int h, int own_r, int own_b, int thr8)
 {
-    const rt_sample *k[4] = {&full[y0][x0], &full[y0][x0 + w], &full[y0 + h][x0],
-                             &full[y0 + h][x0 + w]};
-    const int at[4] = {y0 * wi + x0, y0 * wi + x0 + w, (y0 + h) * wi + x0, (y0 + h) * wi + x0 + w};
-    for (int i = 0; i < 4; i++)
-        refused[at[i]] = refknown[at[i]] = 1;
+    const rt_sample *k[4];
+    k[0] = ref_need(wi, x0, y0);
+    k[1] = ref_need(wi, x0 + w, y0);
+    k[2] = ref_need(wi, x0, y0 + h);
+    k[3] = ref_need(wi, x0 + w, y0 + h);
     const enum rt_split_reason why = w > 1 || h > 1 ? rt_corners_differ(k, thr8) : RT_SPLIT_NONE;
     if (why == RT_SPLIT_CONTRIB && w == 2 && h == 2 && !own_r && !own_b) {
-        /* the centre test: the centre traced first; on the corners' mean within half the
-         * threshold, the square is filled unsplit, traced points showing their colour as the
-         * fill shows a corner */
-        const int c = (y0 + 1) * wi + x0 + 1;
-        refused[c] = refknown[c] = 1;
-        if (rt_centre_smooth(k, &full[y0 + 1][x0 + 1], thr8 / 2)) {
+        /* the centre test: the centre traced first (in full); on the corners' mean within half
+         * the threshold, the square is filled unsplit, traced points showing their colour as
+         * the fill shows a corner */
+        const rt_sample *area0 = ref_area_k[0];
+        ref_area_k[0] = NULL;
+        const rt_sample *mid = ref_need(wi, x0 + 1, y0 + 1);
+        ref_area_k[0] = area0;
+        if (rt_centre_smooth(k, mid, thr8 / 2)) {
             uint32_t *dst = refpx + y0 * wi + x0;
             ref_kept++;
             rt_interpolate(dst, wi, 2, 2, 2, 2, k[0]->color, k[1]->color, k[2]->color, k[3]->color);
             for (int j = 0; j < 2; j++)
                 for (int i = 0; i < 2; i++)
                     if ((i || j) && refknown[(y0 + j) * wi + x0 + i]) {
-                        const rt_color col = full[y0 + j][x0 + i].color;
+                        const rt_color col = cur[y0 + j][x0 + i].color;
                         rt_interpolate(dst + j * wi + i, wi, 1, 1, 1, 1, col, col, col, col);
                     }
             return;
         }
     }
     if (why != RT_SPLIT_NONE) {
+        /* the points this split adds: local parts interpolated where its corners qualify */
+        const rt_sample *outer_k[4];
+        int outer[4];
+        memcpy(outer_k, ref_area_k, sizeof outer_k);
+        memcpy(outer, ref_area, sizeof outer);
+        ref_area_k[0] = NULL;
+        if (why == RT_SPLIT_SECONDARY && ref_local_ok(k, w, h, thr8)) {
+            memcpy(ref_area_k, k, sizeof ref_area_k);
+            ref_area[0] = x0;
+            ref_area[1] = y0;
+            ref_area[2] = w;
+            ref_area[3] = h;
+        }
         int xs[3] = {x0, x0 + w, x0 + w}, ys[3] = {y0, y0 + h, y0 + h}, nx = 1, ny = 1;
         if (w >= 2) {
             xs[1] = x0 + w / 2;
@@ -662,6 +853,8 @@ static void ref_square(int wi, int x0, int y0, int w, int h, int own_r, int own_
             for (int i = 0; i < nx; i++)
                 ref_square(wi, xs[i], ys[j], xs[i + 1] - xs[i], ys[j + 1] - ys[j],
                            i == nx - 1 && own_r, j == ny - 1 && own_b, thr8);
+        memcpy(ref_area_k, outer_k, sizeof outer_k);
+        memcpy(ref_area, outer, sizeof outer);
         return;
     }
     int cols = w + (own_r ? 1 : 0), rows = h + (own_b ? 1 : 0);
@@ -670,10 +863,10 @@ static void ref_square(int wi, int x0, int y0, int w, int h, int own_r, int own_
     /* points known before, on the top row and left column, show their traced colour */
     for (int i = 1; i < cols; i++)
         if (refknown[y0 * wi + x0 + i])
-            dst[i] = rt_color_pixel(full[y0][x0 + i].color);
+            dst[i] = rt_color_pixel(cur[y0][x0 + i].color);
     for (int j = 1; j < rows; j++)
         if (refknown[(y0 + j) * wi + x0])
-            dst[j * wi] = rt_color_pixel(full[y0 + j][x0].color);
+            dst[j * wi] = rt_color_pixel(cur[y0 + j][x0].color);
 }
 
 static void test_adaptive_reference(void **state)
@@ -707,7 +900,8 @@ static void test_adaptive_reference(void **state)
     s.eye_at.x = r_add(s.eye_at.x, from_d(1));
     const int sizes[][2] = {{W, H}, {W - 1, H - 1}, {37, 29}, {17, 33}, {61, 5}, {3, 3}};
     const int grids[] = {2, 4, 8, 16};
-    long pixels = 0, used = 0, kept = 0;
+    long pixels = 0, used = 0, kept = 0, local = 0;
+    ref_scene = &s;
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
         int w = sizes[n][0], h = sizes[n][1];
         rt_view v;
@@ -717,6 +911,8 @@ static void test_adaptive_reference(void **state)
         for (int y = 0; y < h; y++)
             for (int x = 0; x < w; x++)
                 rt_trace_pixel(&s, &v, &pf, x, y, &st, &full[y][x]);
+        ref_view = &v;
+        ref_params = &pf;
         for (size_t g = 0; g < sizeof grids / sizeof grids[0]; g++) {
             const rt_params pa = {.depth = s.depth,
                                   .mode = RT_MODE_ADAPTIVE,
@@ -728,7 +924,8 @@ static void test_adaptive_reference(void **state)
                 nrows = h > 1 ? (h - 1 + gr - 1) / gr : 1;
             memset(refused, 0, sizeof refused);
             memset(refknown, 0, sizeof refknown);
-            const long kept0 = ref_kept;
+            const long kept0 = ref_kept, local0 = ref_local;
+            ref_area_k[0] = NULL;
             for (int r = 0; r < nrows; r++)
                 for (int i = 0; i < ncols; i++) {
                     int x0 = ref_corner(i, gr, w), y0 = ref_corner(r, gr, h);
@@ -743,7 +940,9 @@ static void test_adaptive_reference(void **state)
             rt_stats sa = {0};
             rt_render(&s, &v, &pa, adpx, w, &sa, work, traced);
             assert_int_equal(sa.contrib_kept, ref_kept - kept0);
+            assert_int_equal(sa.local_points, ref_local - local0);
             kept += sa.contrib_kept;
+            local += sa.local_points;
             for (int i = 0; i < w * h; i++) {
                 if (adpx[i] != refpx[i] || (traced[i] != 0) != refused[i])
                     fail_msg("%dx%d grid %d: pixel (%d, %d) is %06x traced %d, the plain "
@@ -759,9 +958,12 @@ static void test_adaptive_reference(void **state)
     assert_true(used * 10 > pixels);
     /* and smooth 2x2 squares split for their contributions alone that were filled unsplit */
     assert_true(kept > 0);
+    /* and points of reflections' edges whose local parts were interpolated */
+    assert_true(local > 0);
     print_message("adaptive recursion: %ld pixels (%ld traced, %ld 2x2 squares kept by the centre "
-                  "test) equal to the plain recursion's\n",
-                  pixels, used, kept);
+                  "test, %ld points with interpolated local parts) equal to the plain "
+                  "recursion's\n",
+                  pixels, used, kept, local);
 }
 
 /* ---- probe mode ----------------------------------------------------------------------------- */
@@ -1499,6 +1701,7 @@ int main(void)
         cmocka_unit_test(test_checker_cells),
         cmocka_unit_test(test_noise_pixels),
         cmocka_unit_test(test_shadow_pixels),
+        cmocka_unit_test(test_local_part),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),

@@ -164,6 +164,7 @@ static void app_print_stats(const cli_opts *o, const char *scene_name, const rt_
                FRAME_SUM(t, shadow_pixels, 0));
         printf("centre_tests=%llu\ncontrib_kept=%llu\n", FRAME_SUM(t, centre_tests, 0),
                FRAME_SUM(t, contrib_kept, 0));
+        printf("local_points=%llu\n", FRAME_SUM(t, local_points, 0));
         printf("work_bytes=%lu\n", work_bytes);
     }
 #if FX_COUNT_EVENTS

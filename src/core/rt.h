@@ -401,6 +401,8 @@ typedef struct rt_stats {
     uint32_t centre_tests;    /* adaptive: 2x2 squares split only for contributions whose
                                  centre was traced first for the centre test (subsample.c) */
     uint32_t contrib_kept;    /* adaptive: of those, filled unsplit (rt_centre_smooth) */
+    uint32_t local_points;    /* adaptive and probe: points of squares split for their secondary
+                                 rays whose primary hit's local part was interpolated (ss_local) */
 } rt_stats;
 
 /* A light closer than this to a surface gets shadow rays aimed from their offset origin: the
@@ -490,10 +492,27 @@ static inline dir3 rt_view_ray(const rt_view *v, int x, int y)
  * rt_view_init resets the sets to every object (and mirror_plane to -1). */
 void rt_view_cull(rt_view *v, const rt_scene *s);
 
+/* A primary hit's local part given (adaptive and probe mode, subsample.c: ss_local): where the point's
+ * primary ray meets object `id` in checker cell `cell`, its ambient and light terms are not
+ * formed: `col` (in [0, 1]) is taken as its colour there and `lights` as its light states; its
+ * secondary rays are traced as usual. */
+typedef struct rt_local {
+    rt_color col;
+    uint8_t id, cell, lights;
+} rt_local;
+
+/* rt_trace_pixel with the primary hit's local part given by *loc where it applies (loc NULL:
+ * rt_trace_pixel itself); such a record keeps no other tone (alt_known 0). */
+void rt_trace_pixel_local(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                          const rt_local *loc, rt_stats *stats, rt_sample *out);
+
 /* Traces the primary ray through pixel (x, y) with at most p->depth bounces and p->min_contrib
  * recursion control; fills *out and adds the rays cast to *stats. */
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out);
+static inline void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x,
+                                  int y, rt_stats *stats, rt_sample *out)
+{
+    rt_trace_pixel_local(s, v, p, x, y, (const rt_local *)0, stats, out);
+}
 
 /* A pixel's primary ray and its nearest hit: found by the probe of the pixel (probe mode,
  * rt_probe_point) and reused by its full shade, which then casts no primary ray of its own. */

@@ -26,6 +26,7 @@ typedef struct trace_ctx {
      * other tone's colour, and one on a noise texture its lighting factors (rt_sample.alt,
      * alt_known 1 or 2: trace_alt_mid) */
     int alt;
+    const rt_local *local; /* the primary hit's local part, given (rt_trace_pixel_local), or NULL */
 } trace_ctx;
 
 /* Inlined into its three callers: the colour stays in registers (no copy through the stack)
@@ -309,25 +310,33 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         ? rt_texture_color(m, p, c->octaves, r_mul_in(c->pixel, travelled), c->stats, &cell)
         : m->diffuse;
     if (level == 0)
-        c->sample->cell = cell;
-    /* the ambient term; for the material's own diffuse colour (untextured, or a checker's
-     * first colour) the frame's (rt_scene_prepare), the same value */
-    rt_color col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
-        ? m->ambient_term
-        : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
-    h.base = base;
+        c->sample->cell = cell; /* before trace_alt_mid, which reads it */
+    rt_color col;
     unsigned lights = 0;
-    for (int i = 0; i < s->nlights; i++)
-        lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
-    if (level == 0) {
-        c->sample->lights = (uint8_t)lights;
-        if (c->alt && m->tex.active) {
+    const rt_local *lc = level == 0 ? c->local : NULL;
+    if (lc && id == lc->id && cell == lc->cell) {
+        /* the local part given (ss_local): no ambient, light or shadow terms, no other tone */
+        c->stats->local_points++;
+        col = lc->col;
+        lights = lc->lights;
+    } else {
+        /* the ambient term; for the material's own diffuse colour (untextured, or a checker's
+         * first colour) the frame's (rt_scene_prepare), the same value */
+        col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
+            ? m->ambient_term
+            : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
+        h.base = base;
+        for (int i = 0; i < s->nlights; i++)
+            lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
+        if (level == 0 && c->alt && m->tex.active) {
             if (cell && (s->plane_set >> id & 1))
                 trace_alt_mid(c, &h, lights, 0); /* a plane with a two-tone checker */
             else if (rt_scene_has(s, RT_FX_NOISE) && m->tex.kind != RT_TEX_CHECKER)
                 trace_alt_mid(c, &h, lights, 1); /* a noise texture */
         }
     }
+    if (level == 0)
+        c->sample->lights = (uint8_t)lights;
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
     trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
 
@@ -355,12 +364,12 @@ __attribute__((cold)) int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit 
     return state;
 }
 
-/* Shared by rt_trace_pixel and rt_trace_pixel_from: inlined into each (`pri` NULL in the
+/* Shared by rt_trace_pixel_local and rt_trace_pixel_from: inlined into each (`pri` NULL in the
  * first). */
 static inline __attribute__((always_inline)) void trace_point(const rt_scene *s, const rt_view *v,
                                                               const rt_params *p, int x, int y,
                                                               rt_stats *stats, rt_sample *out,
-                                                              rt_primary *pri)
+                                                              rt_primary *pri, const rt_local *loc)
 {
     int at_eye = rt_scene_at_eye(s, v->eye);
     int eye_prepared = RT_COMPILED_PROBE && pri ? 2 : at_eye;
@@ -378,7 +387,8 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .primary_cand = rt_view_candidates(v, x, y),
                    .mirror = at_eye ? v->mirror_plane : -1,
                    .mirror_cand = rt_view_mirror_candidates(v, x, y),
-                   .alt = alt};
+                   .alt = alt,
+                   .local = loc};
     out->head = 0; /* nhits, lights, cell; flags, which the callers set after */
     out->alt_known = 0;
     dir3 d;
@@ -403,16 +413,16 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     out->color = col;
 }
 
-void rt_trace_pixel(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
-                    rt_stats *stats, rt_sample *out)
+void rt_trace_pixel_local(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+                          const rt_local *loc, rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, NULL);
+    trace_point(s, v, p, x, y, stats, out, NULL, loc);
 }
 
 #if RT_COMPILED_PROBE
 void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out)
 {
-    trace_point(s, v, p, x, y, stats, out, pri);
+    trace_point(s, v, p, x, y, stats, out, pri, NULL);
 }
 #endif
