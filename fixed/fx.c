@@ -112,7 +112,7 @@ uint32_t fx_isqrt64(uint64_t n)
 }
 
 /* Taylor series of sin and cos at x (a unit, |x| <= pi/4): errors below 2e-9 in Q2.30. */
-static __attribute__((cold)) void fx_sincos_series(unit x, unit *s, unit *c)
+static FX_BOARD_THUMB __attribute__((cold)) void fx_sincos_series(unit x, unit *s, unit *c)
 {
     unit x2 = u_mul(x, x);
     /* Horner: sin = x (1 - x2/6 (1 - x2/20 (1 - x2/42 (1 - x2/72 (1 - x2/110))))) */
@@ -130,7 +130,7 @@ static __attribute__((cold)) void fx_sincos_series(unit x, unit *s, unit *c)
 }
 
 /* Once per frame (the camera's field of view): compiled for size (cold). */
-__attribute__((cold)) void u_sincos_deg(real deg, unit *s, unit *c)
+FX_BOARD_THUMB __attribute__((cold)) void u_sincos_deg(real deg, unit *s, unit *c)
 {
     /* Fold the angle exactly, in degrees: into [0, 360), then into the first octant. */
     int32_t a = r_mod(deg, R(360.0));

@@ -69,6 +69,17 @@ void fx_events_reset(void);
 #define FX_EVENT(k) ((void)0)
 #endif
 
+/* Code the ARM926 board image compiles as Thumb at -Os, within files otherwise ARM code at -O2:
+ * functions that run outside the counted frames (once per frame or per command) or only in
+ * non-default modes (probe mode), where Thumb's smaller code costs no rendering instruction of
+ * the default settings (Makefile, ARM_COLD_SRCS; docs/arm.md). Nothing elsewhere (x86-64, the
+ * Cortex-M3's Thumb-2). */
+#if defined(__arm__) && !defined(__thumb2__)
+#define FX_BOARD_THUMB __attribute__((target("thumb"), optimize("Os")))
+#else
+#define FX_BOARD_THUMB
+#endif
+
 #if REAL_FIXED
 #include <fix16.h>
 typedef fix16_t real;  /* Q16.16 */

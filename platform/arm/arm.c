@@ -35,7 +35,8 @@ extern uint32_t __fb_start[];
 static int arm_back; /* framebuffer the next frame is drawn into */
 static int arm_display_on;
 
-int board_semi(uint32_t op, void *arg)
+/* ARM code in this Thumb file (ARM_COLD_SRCS): the semihosting call is ARM's SVC 0x123456. */
+__attribute__((target("arm"))) int board_semi(uint32_t op, void *arg)
 {
     register uint32_t r0 __asm__("r0") = op;
     register void *r1 __asm__("r1") = arg;
@@ -50,7 +51,9 @@ void board_putc(char c)
     ARM_UART_DR = (uint32_t)(unsigned char)c;
 }
 
-uint64_t plat_time_ns(void)
+/* ARM code at -O2 in this Thumb file, as the rendering that runs between its two reads of a frame (the
+ * count of a frame takes in part of each call). */
+__attribute__((target("arm"), optimize("O2"))) uint64_t plat_time_ns(void)
 {
     /* The 32-bit counter wraps every 179 s; frames take far less, so one wrap at most is seen
      * between two calls. */
