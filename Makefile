@@ -313,10 +313,11 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # once per frame before the counted rendering starts, and probe.c. ARM_COLD_SRCS are Thumb at -Os
 # (a quarter smaller than ARM code at -Os; the ARM926 runs both, the linker makes the calls between
 # them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 790 B
-# smaller than ARM -Os for about 2,000 instructions more a frame, uncounted). ARM_SMALL_SRCS are
-# ARM code at -Os: rt_scene_prepare and the camera's rt_view_init/rt_view_cull (64-bit arithmetic,
-# which Thumb-1 does through library calls: Thumb would save 580 B for 63,000 instructions more a
-# frame) and probe.c (rendering code of --mode probe, at -Os since docs/probe.md measured it).
+# smaller than ARM -Os for about 2,000 instructions more a frame, uncounted) and the camera's set-up
+# (camera.c: 264 B smaller for about 5,800 instructions more a frame, uncounted). ARM_SMALL_SRCS
+# are ARM code at -Os: rt_scene_prepare (64-bit arithmetic, which Thumb-1 does through library
+# calls: Thumb would save about 430 B for 69,000 instructions more a frame) and probe.c (rendering
+# code of --mode probe, at -Os since docs/probe.md measured it; Thumb: probe mode +1.9 %).
 # `make qemu-profile` shows no function of the other files inside the frames. arm.c (the board's
 # backend) is Thumb too but for its semihosting call and its clock read (ARM, the read at -O2: the
 # frame's count takes in part of each call). Within the files at -O2, FX_BOARD_THUMB (fixed/real.h)
@@ -324,11 +325,11 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # modes: u_sincos_deg, rt_render_band_rows, rt_render_work_size,
 # rt_trace_pixel_from, trace_first and ss_probe_new (probe mode). arm.c and these took the image
 # from 65,464 to 64,516 B for +4 instructions of mean frame (qemu.sh bench fixed 0 1200 100) and
-# +0.09 % in probe mode (50,754,112 -> 50,800,971). tests/scene_programs.sh builds its ARM images
+# +0.09 % in probe mode (50,754,112 -> 50,800,971); camera.c in Thumb took it to 64,252 B. tests/scene_programs.sh builds its ARM images
 # with the same flags (make arm-file-flags).
-ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c platform/arm/arm.c
+ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c platform/arm/arm.c src/core/camera.c
 ARM_COLD_CFLAGS := -Os -mthumb
-ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c src/core/camera.c
+ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c
 ARM_SMALL_CFLAGS := -Os
 $(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_COLD_SRCS))): ARM_FILE_CFLAGS := $(ARM_COLD_CFLAGS)
 $(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_SMALL_SRCS))): ARM_FILE_CFLAGS := $(ARM_SMALL_CFLAGS)
