@@ -273,7 +273,10 @@ ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
 # which saves RAM (the intro has 7; src/app/intro.c refuses a compiled scene with more).
 BOARD_MAX_OBJECTS := 16
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
-ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections \
+# --use-blx: calls between ARM and Thumb code are single BLX instructions (the ARM926 has them)
+# instead of the linker's interworking veneers (8 or 12 B each, two or three instructions more a
+# call): 288 B less in the fixed image (64,252 -> 63,964 B), frames as before.
+ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,--use-blx \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
 ARM_ELFS := $(BUILD)/arm/intro-fixed.elf $(BUILD)/arm/intro-float.elf
