@@ -51,7 +51,7 @@ static int probe_noise(const rt_scene *s, int id)
         s->materials[s->objects[id].material].tex.kind > RT_TEX_CHECKER;
 }
 
-rt_probe_masks rt_probe_masks_of(const rt_scene *s)
+FX_BOARD_THUMB rt_probe_masks rt_probe_masks_of(const rt_scene *s)
 {
     rt_probe_masks mk = {0, 0};
     for (int i = 0; i < s->nobjects; i++) {

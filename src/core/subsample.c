@@ -27,7 +27,7 @@ FX_BOARD_THUMB unsigned long rt_render_work_size(const rt_params *p, int width)
     return (2 * row + side * side) * sizeof(rt_sample);
 }
 
-int rt_render_band_count(const rt_params *p, int height)
+FX_BOARD_THUMB int rt_render_band_count(const rt_params *p, int height)
 {
     return p->mode != RT_MODE_FULL ? ss_count(height, p->grid) : height;
 }
