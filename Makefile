@@ -326,12 +326,13 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # frame's count takes in part of each call). Within the files at -O2, FX_BOARD_THUMB (fixed/real.h)
 # makes Thumb at -Os the functions that run outside the counted frames or only in non-default
 # modes: u_sincos_deg, fx_norm32, rt_render_band_rows, rt_render_band_count, rt_render_work_size,
-# rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of (probe mode). arm.c and these took the image
-# from 65,464 to 64,516 B for +4 instructions of mean frame (qemu.sh bench fixed 0 1200 100) and
-# +0.09 % in probe mode (50,754,112 -> 50,800,971); camera.c in Thumb took it to 64,252 B,
-# --use-blx to 63,964 B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,884 B. tests/scene_programs.sh builds its ARM images
-# with the same flags (make arm-file-flags).
-ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c platform/arm/arm.c src/core/camera.c
+# and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of. With
+# arm.c they took the image from 65,464 to 64,516 B (+4 instructions in a mean frame, qemu.sh bench
+# fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,252 B, --use-blx (ARM_LDFLAGS) to 63,964
+# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,884 B. tests/scene_programs.sh
+# builds its ARM images with the same flags (make arm-file-flags).
+ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c \
+                 platform/arm/arm.c src/core/camera.c
 ARM_COLD_CFLAGS := -Os -mthumb
 ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c
 ARM_SMALL_CFLAGS := -Os

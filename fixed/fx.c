@@ -430,7 +430,8 @@ real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
  * fx_norm32_to's, test_numeric), the length formed only where it is asked for, so one beyond
  * real's range counts no event the caller did not ask for. Off the tracer's usual paths (once a
  * frame, or fallbacks): the light direction has fx_norm32_to. */
-FX_BOARD_THUMB dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len) { return fx_norm64(x, y, z, 16, len); }
+FX_BOARD_THUMB
+dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len) { return fx_norm64(x, y, z, 16, len); }
 
 /* The primary ray through a pixel (d3_ray): f + r*(step*ia) + u*(step*ib), ia and ib the
  * pixel's offsets from the image centre in half pixels, normalised. Formed in Q.58 when

@@ -51,8 +51,8 @@ void board_putc(char c)
     ARM_UART_DR = (uint32_t)(unsigned char)c;
 }
 
-/* ARM code at -O2 in this Thumb file, as the rendering that runs between its two reads of a frame (the
- * count of a frame takes in part of each call). */
+/* ARM code at -O2 in this Thumb file, as the rendering that runs between its two reads of a
+ * frame (the count of a frame takes in part of each call). */
 __attribute__((target("arm"), optimize("O2"))) uint64_t plat_time_ns(void)
 {
     /* The 32-bit counter wraps every 179 s; frames take far less, so one wrap at most is seen

@@ -469,7 +469,8 @@ static inline void ss_need(ss_ctx *c, int x, int y, rt_sample *sm)
 /* Probe mode: the point (x, y) a split adds in the middle of an edge from a to b (at fraction
  * t, span pixels long), not decided yet (rt_probe_point); probed, and shaded in full only when
  * rt_probe_point cannot give its colour. */
-static FX_BOARD_THUMB __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, const rt_sample *a,
+FX_BOARD_THUMB
+static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, const rt_sample *a,
                                                    const rt_sample *b, real t, int span)
 {
     rt_sample *sm = &c->lat[(y - c->sy) * c->lstride + (x - c->sx)];
@@ -1162,7 +1163,8 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     }
 }
 
-FX_BOARD_THUMB void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows)
+FX_BOARD_THUMB
+void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows)
 {
     *y0 = *rows = 0;
     if (nbands < 1 || band < 0 || band >= nbands || height < 1)

@@ -50,7 +50,8 @@ static inline __attribute__((always_inline)) void trace_record(trace_ctx *c, int
 #if RT_COMPILED_PROBE
 /* Probe mode's primary hit (eye_prepared 2): the one a probe of this pixel found (c->pri), or
  * found here and kept there. Out of line, off the other modes' path. */
-static FX_BOARD_THUMB __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d, real *t)
+FX_BOARD_THUMB
+static __attribute__((noinline)) int trace_first(trace_ctx *c, vec3 org, dir3 d, real *t)
 {
     rt_primary *pri = c->pri;
     if (pri->id == RT_PRIMARY_UNKNOWN) {
@@ -420,7 +421,8 @@ void rt_trace_pixel_local(const rt_scene *s, const rt_view *v, const rt_params *
 }
 
 #if RT_COMPILED_PROBE
-FX_BOARD_THUMB void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
+FX_BOARD_THUMB
+void rt_trace_pixel_from(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                          rt_primary *pri, rt_stats *stats, rt_sample *out)
 {
     trace_point(s, v, p, x, y, stats, out, pri, NULL);
