@@ -15,8 +15,8 @@
 #                   (QEMU): docs/tradeoff.md and a plot; QUICK=1: smoke
 #   make bench-subsample  full vs adaptive rendering: points traced, rays, time, PSNR
 #   make bench-effects    effects on demand vs every effect forced on, per example scene
-#   make bench-modes      full, adaptive and probe mode in exact instruction counts: callgrind on
-#                   both desktop builds (whole run and tracing), QEMU icount on the ARM926
+#   make bench-modes      full, adaptive and probe mode: exact instruction counts (callgrind on
+#                   both desktop builds, QEMU icount on the ARM926) and the desktop's tracing time
 #   make scene-programs   compile each scene into its own program; code size; same frames
 #   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
