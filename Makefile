@@ -275,7 +275,7 @@ BOARD_MAX_OBJECTS := 16
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
 # --use-blx: calls between ARM and Thumb code are single BLX instructions (the ARM926 has them)
 # instead of the linker's interworking veneers (8 or 12 B each, two or three instructions more a
-# call): 288 B less in the fixed image (64,252 -> 63,964 B), frames as before.
+# call): 296 B less in the fixed image (64,316 -> 64,020 B, clean builds), frames as before.
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,--use-blx \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
@@ -317,7 +317,7 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # (a quarter smaller than ARM code at -Os; the ARM926 runs both, the linker makes the calls between
 # them blx): the board's command line (intro.c, knobs.c, board.c) and the timeline (scn.c: 790 B
 # smaller than ARM -Os for about 2,000 instructions more a frame, uncounted) and the camera's set-up
-# (camera.c: 264 B smaller for about 5,800 instructions more a frame, uncounted). ARM_SMALL_SRCS
+# (camera.c: 200 B smaller for about 5,800 instructions more a frame, uncounted). ARM_SMALL_SRCS
 # are ARM code at -Os: rt_scene_prepare (64-bit arithmetic, which Thumb-1 does through library
 # calls: Thumb would save about 430 B for 69,000 instructions more a frame) and probe.c (rendering
 # code of --mode probe, at -Os since docs/probe.md measured it; Thumb: probe mode +1.9 %).
@@ -328,8 +328,9 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # modes: u_sincos_deg, fx_norm32, rt_render_band_rows, rt_render_band_count, rt_render_work_size,
 # and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of. With
 # arm.c they took the image from 65,464 to 64,516 B (+4 instructions in a mean frame, qemu.sh bench
-# fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,252 B, --use-blx (ARM_LDFLAGS) to 63,964
-# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,884 B. tests/scene_programs.sh
+# fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,316 B, --use-blx (ARM_LDFLAGS) to 64,020
+# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,940 B (clean builds: the objects
+# do not depend on the per-file flags, so change them with a clean build). tests/scene_programs.sh
 # builds its ARM images with the same flags (make arm-file-flags).
 ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c \
                  platform/arm/arm.c src/core/camera.c

@@ -73,7 +73,11 @@ void fx_events_reset(void);
  * functions that run outside the counted frames (once per frame or per command) or only in
  * non-default modes (probe mode), where Thumb's smaller code costs no rendering instruction of
  * the default settings (Makefile, ARM_COLD_SRCS; docs/arm.md). Nothing elsewhere (x86-64, the
- * Cortex-M3's Thumb-2). */
+ * Cortex-M3's Thumb-2). GCC documents its optimize attribute as a tool for such tuning rather
+ * than for setting options in production code: only -Os is asked for here, the file's other
+ * flags stay, and the pictures are byte-identical with and without it (tests/arm.sh compares the
+ * board's frames with the host's). A function marked so must not inline r_add and the like,
+ * whose saturating __qadd Thumb-1 lacks (the compiler refuses it). */
 #if defined(__arm__) && !defined(__thumb2__)
 #define FX_BOARD_THUMB __attribute__((target("thumb"), optimize("Os")))
 #else

@@ -742,9 +742,9 @@ static int ref_local_ok(const rt_sample *const k[4], int w, int h, int thr8)
     const rt_texture *tx = &ref_scene->materials[ref_scene->objects[id].material].tex;
     if (tx->active && tx->kind != RT_TEX_CHECKER)
         return 0;                          /* a noise texture */
-    for (int side = 0; side < 2; side++) { /* 0, 1, 2, 4, 8 or 16 */
+    for (int side = 0; side < 2; side++) { /* 0, 1, 2 or 4: at most 4 a side */
         const int n = side ? h : w;
-        if (n != 0 && n != 1 && n != 2 && n != 4 && n != 8 && n != 16)
+        if (n != 0 && n != 1 && n != 2 && n != 4)
             return 0;
     }
     for (int i = 1; i < 4; i++)

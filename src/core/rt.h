@@ -492,8 +492,8 @@ static inline dir3 rt_view_ray(const rt_view *v, int x, int y)
  * rt_view_init resets the sets to every object (and mirror_plane to -1). */
 void rt_view_cull(rt_view *v, const rt_scene *s);
 
-/* A primary hit's local part given (adaptive and probe mode, subsample.c: ss_local): where the point's
- * primary ray meets object `id` in checker cell `cell`, its ambient and light terms are not
+/* A primary hit's local part given (adaptive and probe mode, subsample.c: ss_local): where the
+ * point's primary ray meets object `id` in checker cell `cell`, its ambient and light terms are not
  * formed: `col` (in [0, 1]) is taken as its colour there and `lights` as its light states; its
  * secondary rays are traced as usual. */
 typedef struct rt_local {
