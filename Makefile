@@ -329,8 +329,8 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of. With
 # arm.c they took the image from 65,464 to 64,516 B (+4 instructions in a mean frame, qemu.sh bench
 # fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,316 B, --use-blx (ARM_LDFLAGS) to 64,020
-# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,940 B (clean builds: the objects
-# do not depend on the per-file flags, so change them with a clean build). tests/scene_programs.sh
+# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,940 B (clean builds of each
+# step). tests/scene_programs.sh
 # builds its ARM images with the same flags (make arm-file-flags).
 ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c \
                  platform/arm/arm.c src/core/camera.c
