@@ -624,6 +624,40 @@ static void test_reflected_outline(void **state)
             assert_int_equal(full[y][x].hits[0].object, 0); /* the sphere is not seen directly */
 }
 
+/* Local parts are interpolated only on a surface without a noise texture (ss_local_ok): the
+ * reflected-outline scene takes them on its plain mirror floor; the same floor with a faint
+ * noise texture gets none, though its squares still split for their secondary rays. */
+static void test_local_not_on_noise(void **state)
+{
+    (void)state;
+    static rt_scene s;
+    for (int noisy = 0; noisy < 2; noisy++) {
+        mirror_scene(&s);
+        s.lights[0].pos = vd(0, 20, 20);
+        s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
+        if (noisy)
+            s.materials[0].tex = (rt_texture){
+                .kind = RT_TEX_NOISE, .palette = 0, .octaves = 2, .scale = from_d(0.2)};
+        rt_scene_prepare(&s);
+        rt_view v;
+        rt_view_init(&v, &s.camera, W, H);
+        const rt_params pa = {
+            .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
+        rt_stats sa = {0};
+        assert_true(rt_render_work_size(&pa, W) <= sizeof work);
+        rt_render(&s, &v, &pa, adpx, W, &sa, work, traced);
+        print_message("mirror floor%s: %lu splits for secondary rays, %lu points with local "
+                      "parts\n",
+                      noisy ? " with noise" : "", (unsigned long)sa.split_by[RT_SPLIT_SECONDARY],
+                      (unsigned long)sa.local_points);
+        assert_true(sa.split_by[RT_SPLIT_SECONDARY] > 20);
+        if (noisy)
+            assert_int_equal(sa.local_points, 0);
+        else
+            assert_true(sa.local_points > 20);
+    }
+}
+
 /* rt_trace_pixel_local: a point whose primary hit is on the object and cell given takes the
  * local part given (node 0's contribution, the light states) and traces its secondary rays as a
  * full shade does; any other point (another object, the background, another checker cell) is
@@ -1702,6 +1736,7 @@ int main(void)
         cmocka_unit_test(test_noise_pixels),
         cmocka_unit_test(test_shadow_pixels),
         cmocka_unit_test(test_local_part),
+        cmocka_unit_test(test_local_not_on_noise),
         cmocka_unit_test(test_adaptive_reference),
         cmocka_unit_test(test_probe_straight_edge),
         cmocka_unit_test(test_probe_shadow_edge),
