@@ -99,11 +99,29 @@ static inline real r_sin(real a) { return fl_chk(sinf(a)); }
 
 static inline real r_cos(real a) { return fl_chk(cosf(a)); }
 
+/* floor(x) and x - floor(x). On x86-64 without SSE4.1 (the default target), where floorf is no
+ * instruction but an inlined sequence of about 17 with a branch, from the truncated integer
+ * instead: n = (int32_t)x, one less where x lies below it, and floor(x) = n with x's sign (a
+ * zero floor keeps it: floorf(-0.0) is -0.0), so the same bits as floorf for every x the
+ * callers give (|x| < 2^31: the integer is taken in both; beyond 2^23 x is an integer and n is
+ * x). The noise lattice (noise_q16, two a coordinate), checker cells (r_mul_round_in) and the
+ * palettes take it per texture look-up. */
 static inline real r_floor_split(real x, int32_t *i)
 {
+#if defined(__x86_64__) && !defined(__SSE4_1__)
+    int32_t n = (int32_t)x;
+    real t = (real)n;
+    if (x < t) {
+        n--;
+        t -= 1.0f; /* exact: |t| <= 2^23 here */
+    }
+    *i = n;
+    return x - copysignf(t, x);
+#else
     real f = floorf(x);
     *i = (int32_t)f;
     return x - f;
+#endif
 }
 
 /* floor(a * b + 1/2) (the fixed build forms it from one 64-bit sum). */
