@@ -298,8 +298,10 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
     return d;
 }
 
-/* Off the tracer's usual paths (the camera's frame once per frame; fx_renorm's far-from-unit
- * fallback): compiled for size (cold). */
+/* Cold: compiled for size. It normalises every primary ray (fx_ray_dir), but on 32-bit ARM it
+ * is flattened into fx_ray_dir, and on x86-64 not marking it cold changes no measurable time
+ * (docs/probe.md); its other callers are off the usual paths (the camera's frame once per frame,
+ * fx_renorm's far-from-unit fallback). */
 __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     uint64_t m = fx_top_abs3(x, y, z);
@@ -393,8 +395,10 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
 
 /* Unit in Q16.16, any 64-bit vector: the largest component is brought into [2^15, 2^16]
  * (rounded) and fx_norm_scaled does the rest. */
-/* Off the tracer's usual paths (the camera's frame once per frame; fx_renorm's far-from-unit
- * fallback): compiled for size (cold). */
+/* Cold: compiled for size. It normalises every primary ray (fx_ray_dir), but on 32-bit ARM it
+ * is flattened into fx_ray_dir, and on x86-64 not marking it cold changes no measurable time
+ * (docs/probe.md); its other callers are off the usual paths (the camera's frame once per frame,
+ * fx_renorm's far-from-unit fallback). */
 __attribute__((cold)) dir3 fx_norm64(int64_t x, int64_t y, int64_t z, int frac, real *len)
 {
     uint64_t m = fx_top_abs3(x, y, z);

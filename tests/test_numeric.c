@@ -542,6 +542,24 @@ static void test_real_conversions(void **state)
             }
         }
     }
+    /* r_floor_split: the same bits as floorf and x - floorf(x) (on x86-64 it forms the floor
+     * from the truncated integer): signed zeros, (-1, 0), integers, 2^23 and the int32 ends */
+    static const float fl[] = {0.0f, -0.0f, 0.5f, -0.5f, 1e-30f, -1e-30f, 1.0f, -1.0f, -3.0f,
+                               -2.75f, 8388607.5f, -8388607.5f, 8388608.0f, -8388609.0f,
+                               2147483520.0f, -2147483520.0f, -2147483648.0f};
+    for (int k = 0; k < (int)(sizeof fl / sizeof fl[0]) + 200000; k++) {
+        const float x = k < (int)(sizeof fl / sizeof fl[0])
+            ? fl[k]
+            : ldexpf((float)rng_unit(), (int)(rng() % 31)) * (k & 1 ? -1 : 1);
+        const float want_i = floorf(x), want_f = x - want_i;
+        int32_t got_i = 0;
+        const float got_f = r_floor_split(x, &got_i);
+        if (got_i != (int32_t)want_i || memcmp(&got_f, &want_f, sizeof got_f) != 0) {
+            n_failed++;
+            print_error("r_floor_split(%.9g) = %d, %.9g; floorf gives %.9g, %.9g\n", (double)x,
+                        (int)got_i, (double)got_f, (double)want_i, (double)want_f);
+        }
+    }
 #endif
     for (int k = 0; k < 5000; k++) {
         real a = rng_real(-16, 15);
