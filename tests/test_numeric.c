@@ -544,9 +544,10 @@ static void test_real_conversions(void **state)
     }
     /* r_floor_split: the same bits as floorf and x - floorf(x) (on x86-64 it forms the floor
      * from the truncated integer): signed zeros, (-1, 0), integers, 2^23 and the int32 ends */
-    static const float fl[] = {0.0f, -0.0f, 0.5f, -0.5f, 1e-30f, -1e-30f, 1.0f, -1.0f, -3.0f,
-                               -2.75f, 8388607.5f, -8388607.5f, 8388608.0f, -8388609.0f,
-                               2147483520.0f, -2147483520.0f, -2147483648.0f};
+    static const float fl[] = {
+        0.0f,       -0.0f,       0.5f,          -0.5f,          1e-30f,        -1e-30f,
+        1.0f,       -1.0f,       -3.0f,         -2.75f,         8388607.5f,    -8388607.5f,
+        8388608.0f, -8388609.0f, 2147483520.0f, -2147483520.0f, -2147483648.0f};
     for (int k = 0; k < (int)(sizeof fl / sizeof fl[0]) + 200000; k++) {
         const float x = k < (int)(sizeof fl / sizeof fl[0])
             ? fl[k]
