@@ -105,7 +105,7 @@ kept=""
   echo "## How to reproduce"
   echo
   echo '```sh'
-  echo "make bench                        # builds what is missing, then writes this file (80 s on the 2-core build machine)"
+  echo "make bench                        # builds what is missing, then writes this file (about 70-80 s on the 2-core build machine)"
   echo "QUICK=1 tests/bench_all.sh        # smoke run in seconds: build/bench/bench-quick.md (make test runs it)"
   echo "ROUNDS=1 STEP_S=4 QEMU_FRAMES=\"0 1200 48\" tests/bench_all.sh -o /tmp/bench.md   # shorter"
   echo "tests/bench_intro.sh 640x480 3 2  # the desktop part alone, any sizes (comma-separated)"
