@@ -104,7 +104,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs stress clean distclean setup san \
+.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -470,6 +470,12 @@ stress: setup
 	@$(MAKE) --no-print-directory $(BUILD)/stress-fixed $(BUILD)/stress-float
 	$(BUILD)/stress-fixed $(STRESS_RAYS)
 	$(BUILD)/stress-float $(STRESS_RAYS)
+
+# The pictures of README.md and docs/ rendered again with the current build; make test checks
+# that the fixed-point ones are current (src/tools/docs-images.sh).
+docs-images: setup
+	@$(MAKE) --no-print-directory all
+	@src/tools/docs-images.sh
 
 scene-programs: setup-arm
 	@$(MAKE) --no-print-directory all arm

@@ -62,6 +62,13 @@ else
   fail "links: $(tr '\n' ';' <<<"$out")"
 fi
 
+# The pictures in docs/images are the current fixed-point build's (make docs-images).
+if out=$(src/tools/docs-images.sh --check 2>&1); then
+  pass "$out"
+else
+  fail "$out"
+fi
+
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
   for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
