@@ -105,7 +105,8 @@ static const struct cli_option {
      "auto: trace only the effects the frame needs (default);\nall: every effect on, for "
      "comparison"},
     {"--show-samples", NULL, NULL, CLI_R | CLI_PLAY, CLI_SHOW_SAMPLES,
-     "paint every traced point white"},
+     "paint every traced point white (cyan: its local part taken\nfrom its square's corners; "
+     "magenta: only probed)"},
 #endif
     {"--threads", NULL, "N", CLI_R | CLI_P, CLI_THREADS,
      CLI_HELP_TEXT("render on N threads, 1..64 (default: every processor, %d\nhere); the "

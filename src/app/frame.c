@@ -72,10 +72,12 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
 {
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++)
-            if (traced[(long)y * width + x])
-                pixels[(long)y * stride + x] =
-                    !RT_COMPILED_PROBE || traced[(long)y * width + x] == 1 ? 0xFFFFFFu
-                                                                           : FRAME_PROBE_COLOR;
+            if (traced[(long)y * width + x]) {
+                const uint8_t t = traced[(long)y * width + x];
+                pixels[(long)y * stride + x] = t == 3 ? FRAME_LOCAL_COLOR
+                    : RT_COMPILED_PROBE && t == 2     ? FRAME_PROBE_COLOR
+                                                      : 0xFFFFFFu;
+            }
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,

@@ -704,7 +704,8 @@ int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i, rt_color *t
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
  * aligned for rt_sample (probe mode the same). If `traced` is not NULL it gets one byte per pixel
- * (`width` per row): 1 where a point was shaded in full, 2 where it was only probed (probe mode),
+ * (`width` per row): 1 where a point was shaded in full, 3 where it was shaded with its local
+ * part taken from its square's corners (local_points), 2 where it was only probed (probe mode),
  * 0 elsewhere. */
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced);

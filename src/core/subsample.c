@@ -435,15 +435,24 @@ static __attribute__((cold, noinline)) const rt_local *ss_local(ss_ctx *c, int x
 }
 
 /* Shades the point (x, y) in full into *out (in probe mode from the primary hit a probe found,
- * *pri, if not NULL), clamps its colour, marks it, and in probe mode sets its flags. */
+ * *pri, if not NULL), clamps its colour, marks it (1, or 3 where it took its local part from
+ * the square's corners), and in probe mode sets its flags. */
 static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
+    uint8_t mark = 1;
     if (RT_COMPILED_PROBE && pri) {
         rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
         out->flags = (uint8_t)rt_probe_opaque(&c->opaque, out);
     } else {
-        rt_trace_pixel_local(c->scene, c->view, c->params, x, y, c->area ? ss_local(c, x, y) : NULL,
-                             c->stats, out);
+        const rt_local *loc = NULL;
+        uint32_t local0 = 0;
+        if (c->area) {
+            loc = ss_local(c, x, y);
+            local0 = c->stats->local_points;
+        }
+        rt_trace_pixel_local(c->scene, c->view, c->params, x, y, loc, c->stats, out);
+        if (loc && c->stats->local_points != local0)
+            mark = 3;
         out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
             ? (uint8_t)rt_probe_opaque(&c->opaque, out)
             : 0;
@@ -454,7 +463,7 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
     /* Bands running at the same time both trace the corners on the edge between them: the
      * mark is an atomic store, so two of them may set the same byte. */
     if (c->traced)
-        __atomic_store_n(&c->traced[(long)y * c->view->width + x], 1, __ATOMIC_RELAXED);
+        __atomic_store_n(&c->traced[(long)y * c->view->width + x], mark, __ATOMIC_RELAXED);
 }
 
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out) { ss_shade(c, x, y, out, NULL); }

@@ -74,6 +74,6 @@ echo "docs-images: README's picture against rt-float (its caption quotes psnr_db
 echo "docs-images: traced points at 35 s, 640x480 (tracer.md's and probe.md's captions):"
 for m in adaptive probe; do
   echo "  $m: $("$B/rt-fixed" render --size 640x480 --time 35 --threads 1 --mode "$m" --checksum --stats 2>/dev/null |
-    tr ' ' '\n' | grep -E '^(samples_traced|probes)=' | tr '\n' ' ')"
+    tr ' ' '\n' | grep -E '^(samples_traced|probes|local_points)=' | tr '\n' ' ')"
 done
 echo "docs-images: wrote $(ls "$out"/intro-*.png "$out"/probe-samples.png "$out"/m3-oled.png | wc -l) pictures in $out"
