@@ -509,8 +509,8 @@ static int px_diff(uint32_t a, uint32_t b)
  * threshold sees them: a shadow or reflection too faint to show is no edge), checks that the
  * adaptive render traced both pixels (the squares along the edge were split down to 1x1) and shows
  * the full render's colours there (within a level where check_edge says; within TS_LOCAL_ERR
- * levels at the points that took their local parts from their square's corners, marked 3 in
- * `traced`). Returns the number of such pairs. */
+ * levels at the points that took their local parts from their square's corners, marked
+ * RT_TRACED_LOCAL in `traced`). Returns the number of such pairs. */
 static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent, const char *name)
 {
     rt_scene_prepare(s);
@@ -555,9 +555,9 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
                     const int dp = px_diff(adpx[p], fullpx[p]), dq = px_diff(adpx[q], fullpx[q]);
                     local_err = dp > local_err ? dp : local_err;
                     local_err = dq > local_err ? dq : local_err;
-                    const int ep = !dp || (traced[p] == 3 && dp <= TS_LOCAL_ERR) ||
+                    const int ep = !dp || ((traced[p] & RT_TRACED_LOCAL) && dp <= TS_LOCAL_ERR) ||
                         (y % pa.grid == 0 && px_near(adpx[p], fullpx[p]));
-                    const int eq = !dq || (traced[q] == 3 && dq <= TS_LOCAL_ERR) ||
+                    const int eq = !dq || ((traced[q] & RT_TRACED_LOCAL) && dq <= TS_LOCAL_ERR) ||
                         (y2 % pa.grid == 0 && px_near(adpx[q], fullpx[q]));
                     exact += ep && eq;
                     boundary += (ep && adpx[p] != fullpx[p]) || (eq && adpx[q] != fullpx[q]);
@@ -651,10 +651,10 @@ static void test_local_not_on_noise(void **state)
                       "parts\n",
                       noisy ? " with noise" : "", (unsigned long)sa.split_by[RT_SPLIT_SECONDARY],
                       (unsigned long)sa.local_points);
-        /* --show-samples' mark for them: 3 (one thread: a point traced twice is so both times) */
+        /* the traced map marks them RT_TRACED_LOCAL (a point traced twice counts twice) */
         long marked = 0;
         for (int i = 0; i < W * H; i++)
-            marked += traced[i] == 3;
+            marked += (traced[i] & RT_TRACED_LOCAL) != 0;
         assert_true(sa.split_by[RT_SPLIT_SECONDARY] > 20);
         assert_true(marked <= (long)sa.local_points && marked * 10 >= (long)sa.local_points * 9);
         if (noisy)

@@ -74,9 +74,9 @@ void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, cons
         for (int x = 0; x < width; x++)
             if (traced[(long)y * width + x]) {
                 const uint8_t t = traced[(long)y * width + x];
-                pixels[(long)y * stride + x] = t == 3 ? FRAME_LOCAL_COLOR
-                    : RT_COMPILED_PROBE && t == 2     ? FRAME_PROBE_COLOR
-                                                      : 0xFFFFFFu;
+                pixels[(long)y * stride + x] = t & RT_TRACED_FULL ? 0xFFFFFFu
+                    : t & RT_TRACED_LOCAL                         ? FRAME_LOCAL_COLOR
+                                                                  : FRAME_PROBE_COLOR;
             }
 }
 

@@ -39,9 +39,9 @@ void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, cons
                   uint32_t *pixels, int stride, frame_sums *sums, uint8_t *traced);
 
 /* Paints every pixel of a width x height frame whose byte in `traced` (width per row) is set:
- * white the points shaded in full (1), FRAME_LOCAL_COLOR those shaded with their local part
- * taken from their square's corners (3), FRAME_PROBE_COLOR the points only probed (2, probe
- * mode) (--show-samples, the player's S key). */
+ * white the points shaded in full (RT_TRACED_FULL), else FRAME_LOCAL_COLOR those shaded with
+ * their local part taken from their square's corners (RT_TRACED_LOCAL), else FRAME_PROBE_COLOR
+ * the points only probed (probe mode) (--show-samples, the player's S key). */
 #define FRAME_PROBE_COLOR 0xFF00FFu
 #define FRAME_LOCAL_COLOR 0x00FFFFu
 void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, const uint8_t *traced);

@@ -18,7 +18,7 @@ static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p,
         }
         if (traced)
             for (int x = 0; x < v->width; x++)
-                traced[(long)y * v->width + x] = 1;
+                traced[(long)y * v->width + x] = RT_TRACED_FULL;
     }
 }
 

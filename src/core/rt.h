@@ -704,9 +704,12 @@ int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i, rt_color *t
 /* Renders a frame of v->width x v->height into `pixels` (0x00RRGGBB, `stride` pixels per row)
  * in p->mode. Adaptive mode needs `work`, rt_render_work_size(p, width) bytes, suitably
  * aligned for rt_sample (probe mode the same). If `traced` is not NULL it gets one byte per pixel
- * (`width` per row): 1 where a point was shaded in full, 3 where it was shaded with its local
- * part taken from its square's corners (local_points), 2 where it was only probed (probe mode),
- * 0 elsewhere. */
+ * (`width` per row), 0 where no point was traced, else the RT_TRACED_ bits of every way the
+ * point was (a point on a square's edge may be traced by the squares on either side of it;
+ * their union is the same for any number of bands or threads). */
+#define RT_TRACED_FULL 1  /* shaded in full */
+#define RT_TRACED_PROBE 2 /* only probed (probe mode) */
+#define RT_TRACED_LOCAL 4 /* shaded with its local part from its square's corners (local_points) */
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced);
 

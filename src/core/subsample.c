@@ -434,12 +434,24 @@ static __attribute__((cold, noinline)) const rt_local *ss_local(ss_ctx *c, int x
     return loc;
 }
 
+/* Adds `bit` to a point's byte of the traced map. Bands running at the same time both trace the
+ * points on the edge between them, so where the core has byte atomics the bit is added
+ * atomically; a core without them (the ARM926) renders on one thread. */
+static inline void ss_mark(uint8_t *t, uint8_t bit)
+{
+#if defined(__GCC_ATOMIC_CHAR_LOCK_FREE) && __GCC_ATOMIC_CHAR_LOCK_FREE == 2
+    __atomic_fetch_or(t, bit, __ATOMIC_RELAXED);
+#else
+    *t |= bit;
+#endif
+}
+
 /* Shades the point (x, y) in full into *out (in probe mode from the primary hit a probe found,
- * *pri, if not NULL), clamps its colour, marks it (1, or 3 where it took its local part from
- * the square's corners), and in probe mode sets its flags. */
+ * *pri, if not NULL), clamps its colour, marks it (RT_TRACED_FULL, or RT_TRACED_LOCAL where it
+ * took its local part from the square's corners), and in probe mode sets its flags. */
 static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
 {
-    uint8_t mark = 1;
+    uint8_t mark = RT_TRACED_FULL;
     if (RT_COMPILED_PROBE && pri) {
         rt_trace_pixel_from(c->scene, c->view, c->params, x, y, pri, c->stats, out);
         out->flags = (uint8_t)rt_probe_opaque(&c->opaque, out);
@@ -452,7 +464,7 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
         }
         rt_trace_pixel_local(c->scene, c->view, c->params, x, y, loc, c->stats, out);
         if (loc && c->stats->local_points != local0)
-            mark = 3;
+            mark = RT_TRACED_LOCAL;
         out->flags = RT_COMPILED_PROBE && c->params->mode == RT_MODE_PROBE
             ? (uint8_t)rt_probe_opaque(&c->opaque, out)
             : 0;
@@ -460,10 +472,8 @@ static void ss_shade(ss_ctx *c, int x, int y, rt_sample *out, rt_primary *pri)
     /* Interpolate what is shown: colours clamped as the pixel will be. */
     out->color = v3(r_clamp(out->color.x, 0, R_ONE), r_clamp(out->color.y, 0, R_ONE),
                     r_clamp(out->color.z, 0, R_ONE));
-    /* Bands running at the same time both trace the corners on the edge between them: the
-     * mark is an atomic store, so two of them may set the same byte. */
     if (c->traced)
-        __atomic_store_n(&c->traced[(long)y * c->view->width + x], mark, __ATOMIC_RELAXED);
+        ss_mark(&c->traced[(long)y * c->view->width + x], mark);
 }
 
 static void ss_trace(ss_ctx *c, int x, int y, rt_sample *out) { ss_shade(c, x, y, out, NULL); }
@@ -487,7 +497,7 @@ static __attribute__((noinline)) void ss_probe_new(ss_ctx *c, int x, int y, cons
     int r = rt_probe_point(c->scene, c->view, c->stats, c->thr8, x, y, a, b, t, span, &pri, sm);
     if (r > 0) {
         if (c->traced)
-            __atomic_store_n(&c->traced[(long)y * c->view->width + x], 2, __ATOMIC_RELAXED);
+            ss_mark(&c->traced[(long)y * c->view->width + x], RT_TRACED_PROBE);
     } else if (r == 0) {
         ss_shade(c, x, y, sm, &pri); /* in full, from the primary hit the probe found */
     } /* else not probed: shaded where the squares below need it (ss_need), as adaptive mode does */
