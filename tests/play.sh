@@ -130,13 +130,18 @@ for real in fixed float; do
   [ -z "$bad" ] && pass "rt-$real render: 2, 3 and 7 threads give the bytes of 1 thread (5 intro times, both modes)" ||
     fail "rt-$real render: threads change the picture:$bad"
 done
-# and under the sanitizers, with the traced-point map
+# and under the sanitizers, with the traced-point map (at 44 s, probe mode: points probed, and
+# points on the mirror floor that take their local parts, some on the edges between bands)
 for real in fixed float; do
-  rm -f "$T/s1.ppm" "$T/s4.ppm"
-  "$B/san-$real/rt" render --time 36 --size 96x72 --threads 1 --show-samples -o "$T/s1.ppm" 2>"$T/s1.log" &&
-    "$B/san-$real/rt" render --time 36 --size 96x72 --threads 4 --show-samples -o "$T/s4.ppm" 2>"$T/s4.log" &&
-    cmp -s "$T/s1.ppm" "$T/s4.ppm" && pass "san-$real: 4 threads with --show-samples = 1 thread, no sanitizer report" ||
-    fail "san-$real: 4 threads with --show-samples: $(cat "$T/s1.log" "$T/s4.log" | tail -3 | tr '\n' ' ')"
+  for set in "--time 36" "--time 44 --mode probe"; do
+    rm -f "$T/s1.ppm" "$T/s4.ppm"
+    # shellcheck disable=SC2086 # the settings are words
+    "$B/san-$real/rt" render $set --size 96x72 --threads 1 --show-samples -o "$T/s1.ppm" 2>"$T/s1.log" &&
+      "$B/san-$real/rt" render $set --size 96x72 --threads 4 --show-samples -o "$T/s4.ppm" 2>"$T/s4.log" &&
+      cmp -s "$T/s1.ppm" "$T/s4.ppm" &&
+      pass "san-$real ($set): 4 threads with --show-samples = 1 thread, no sanitizer report" ||
+      fail "san-$real ($set): 4 threads with --show-samples: $(cat "$T/s1.log" "$T/s4.log" | tail -3 | tr '\n' ' ')"
+  done
 done
 
 # The player program, stripped, within the original intro's 64 kB (SDL2 linked dynamically).

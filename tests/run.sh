@@ -217,7 +217,8 @@ if [ -z "$missing" ] && grep -q '^mode=adaptive$' <<<"$stats" && grep -q '^grid=
 else
   fail "--stats (adaptive mode) output lacks:$missing (samples=$samples squares_8=$sq8)"
 fi
-# --show-samples paints the traced points white: as many changed pixels as points traced, at most
+# --show-samples paints the traced points (white or cyan): at most as many changed pixels as
+# points traced
 $B/rt-fixed render $DEMO --size 320x240 --time 3 --show-samples -o "$T/dots.ppm" 2>/dev/null
 line=$($B/rt-cmp "$T/dots.ppm" "$T/stats-ad.ppm")
 changed=$(sed -n 's/.*differing=\([0-9]*\).*/\1/p' <<<"$line")

@@ -71,13 +71,13 @@ void frame_sums_add(frame_sums *t, const rt_stats *s)
 void frame_mark_traced(uint32_t *pixels, int stride, int width, int height, const uint8_t *traced)
 {
     for (int y = 0; y < height; y++)
-        for (int x = 0; x < width; x++)
-            if (traced[(long)y * width + x]) {
-                const uint8_t t = traced[(long)y * width + x];
+        for (int x = 0; x < width; x++) {
+            const uint8_t t = traced[(long)y * width + x];
+            if (t)
                 pixels[(long)y * stride + x] = t & RT_TRACED_FULL ? 0xFFFFFFu
                     : t & RT_TRACED_LOCAL                         ? FRAME_LOCAL_COLOR
                                                                   : FRAME_PROBE_COLOR;
-            }
+        }
 }
 
 void frame_render(const frame_ctx *fc, const rt_scene *s, const rt_view *v, const rt_params *p,

@@ -717,9 +717,9 @@ void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t
  * squares (adaptive) or of pixel rows (full), split as evenly as the squares allow. Bands write
  * disjoint pixels, so they may run at the same time (each with its own `work` and `stats`), and
  * together they give rt_render's frame byte for byte. `traced`, if not NULL, must be cleared
- * before the first band; bands only set bytes in it (atomically: two bands may mark the same
- * point of the edge between them). A band traces the corners on its lower edge again, as the
- * next band does: summed stats count those twice. */
+ * before the first band; bands only add RT_TRACED_ bits to it (atomically: two bands may mark
+ * the same point of the edge between them). A band traces the corners on its lower edge again,
+ * as the next band does: summed stats count those twice. */
 void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                     int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands);
 

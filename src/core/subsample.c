@@ -435,11 +435,12 @@ static __attribute__((cold, noinline)) const rt_local *ss_local(ss_ctx *c, int x
 }
 
 /* Adds `bit` to a point's byte of the traced map. Bands running at the same time both trace the
- * points on the edge between them, so where the core has byte atomics the bit is added
- * atomically; a core without them (the ARM926) renders on one thread. */
+ * points on the edge between them, so the bit is added atomically: inline where the core has
+ * byte atomics, through libatomic on a hosted system without them; plainly only on a
+ * freestanding core without them (the ARM926 board, which renders on one thread). */
 static inline void ss_mark(uint8_t *t, uint8_t bit)
 {
-#if defined(__GCC_ATOMIC_CHAR_LOCK_FREE) && __GCC_ATOMIC_CHAR_LOCK_FREE == 2
+#if (defined(__GCC_ATOMIC_CHAR_LOCK_FREE) && __GCC_ATOMIC_CHAR_LOCK_FREE == 2) || __STDC_HOSTED__
     __atomic_fetch_or(t, bit, __ATOMIC_RELAXED);
 #else
     *t |= bit;
