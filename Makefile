@@ -18,6 +18,7 @@
 #   make bench-modes      full, adaptive and probe mode: exact instruction counts (callgrind on
 #                   both desktop builds, QEMU icount on the ARM926) and the desktop's tracing time
 #   make scene-programs   compile each scene into its own program; code size; same frames
+#   make docs-images      render the pictures of README.md and docs/ again (make test checks them)
 #   make arm        build/arm/intro-fixed.elf and intro-float.elf (ARM926, bare metal); sizes
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU

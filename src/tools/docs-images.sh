@@ -73,9 +73,10 @@ echo "docs-images: README's picture against rt-float (its caption quotes psnr_db
 "$B/rt-cmp" "$out/intro-fixed.png" "$tmp/float.png" --diff "$out/intro-diff.png"
 echo "docs-images: the samples pictures at 35 s, 640x480 (tracer.md's and probe.md's captions):"
 for m in adaptive probe; do
-  "$B/rt-fixed" render --size 640x480 --time 35 --threads 1 --mode "$m" --show-samples \
-    -o "$tmp/$m.ppm" >/dev/null 2>&1
-  # a point traced twice (on a shared edge) is counted twice by --stats, painted once
+  # one render: the picture as PPM for the counts below, and its --stats (which count twice a
+  # point traced twice, on an edge two squares share; the picture paints it once)
+  stats=$("$B/rt-fixed" render --size 640x480 --time 35 --threads 1 --mode "$m" --show-samples \
+    --stats -o "$tmp/$m.ppm" 2>/dev/null | grep -E '^(samples_traced|probes|local_points)=' | tr '\n' ' ')
   echo "  $m: pixels $(python3 - "$tmp/$m.ppm" <<'PY'
 import sys
 d = open(sys.argv[1], 'rb').read().split(b'\n', 3)[3]
@@ -83,7 +84,6 @@ px = [d[i:i + 3] for i in range(0, len(d), 3)]
 print('white %d cyan %d magenta %d' % (px.count(b'\xff\xff\xff'), px.count(b'\x00\xff\xff'),
                                        px.count(b'\xff\x00\xff')))
 PY
-); stats $("$B/rt-fixed" render --size 640x480 --time 35 --threads 1 --mode "$m" --checksum --stats 2>/dev/null |
-    tr ' ' '\n' | grep -E '^(samples_traced|probes|local_points)=' | tr '\n' ' ')"
+); stats $stats"
 done
 echo "docs-images: wrote $(ls "$out"/intro-*.png "$out"/probe-samples.png "$out"/m3-oled.png | wc -l) pictures in $out"
