@@ -1,7 +1,7 @@
 /* subsample.c: adaptive subsampling: trace square corners, split squares whose corners disagree, interpolate the rest (probe mode: probe the points a split adds first, probe.c). */
 #include <string.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 /* Squares along a side of n pixels: corners at 0, g, 2g, ... and at the last pixel, n - 1
  * (so the last square may be narrower); at least one square, even for n = 1. */
@@ -564,8 +564,8 @@ static __attribute__((noinline)) int ss_hit_at(ss_ctx *c, int id, int x, int y, 
     c->ray = rt_view_ray(v, x, y);
 #if RT_COMPILED_PROBE
     const rt_scene *s = c->scene;
-    if (s->plane_set >> id & 1 ? !rt_plane_primary(s, id, c->ray, t)
-                               : rt_nearest_primary(s, c->ray, (uint32_t)1 << id, t) != id)
+    if (s->cull.plane_set >> id & 1 ? !rt_plane_primary(s, id, c->ray, t)
+                                    : rt_nearest_primary(s, c->ray, (uint32_t)1 << id, t) != id)
         return 0; /* a plane: its test alone (rt_plane_primary), the same t */
 #else
     if (rt_nearest_primary(c->scene, c->ray, (uint32_t)1 << id, t) != id)
@@ -607,7 +607,7 @@ static __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, in
 {
     const rt_scene *s = c->scene;
     const int id = sm->hits[0].object, cols = w + (own & 1), rows = h + (own >> 1 & 1);
-    if (id == RT_NO_OBJECT || !(s->plane_set >> id & 1))
+    if (id == RT_NO_OBJECT || !(s->cull.plane_set >> id & 1))
         return 0;
     /* tc[tone][corner]: the corners' colours in either tone, in [0, 1] */
     rt_color tc[2][4];
@@ -868,7 +868,7 @@ static __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const
     const int id = sm->hits[0].object;
     const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
     if (w > SS_SHADOW_MAX || diff != 1u << (2 * li) || (l0 & RT_LIGHTS_HIGHLIGHT) ||
-        (m->tex.active && !sm->cell) || !(c->scene->plane_set >> id & 1) ||
+        (m->tex.active && !sm->cell) || !(c->scene->cull.plane_set >> id & 1) ||
         !rt_scene_at_eye(c->scene, c->view->eye))
         return 0;
     rt_color dl[2][4]; /* D and L */

@@ -1,7 +1,7 @@
 /* trace.c: Whitted ray tracing: nearest hit, hard shadows, Phong shading, reflection, refraction. */
 #include <stddef.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 /* State of one traced image point, threaded through the recursion. */
 typedef struct trace_ctx {
@@ -241,7 +241,7 @@ static inline rt_color trace_secondary(trace_ctx *c, const trace_hit *h, real we
          * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
          * be off by more than that. Every object is tested when effects are forced.) Off a
          * sphere, from inside it when seen from inside. */
-        int from = sphere ? 2 * h->id + inside : !inside && !s->forced ? 2 * h->id : -1;
+        int from = sphere ? 2 * h->id + inside : !inside && !s->cull.forced ? 2 * h->id : -1;
         rt_color rc =
             trace_ray(c, TRACE_RAY_ARG(h->p_out), TRACE_RAY_NEW(dir3, d3_reflect_k(d, n, dk)),
                       level + 1, wr, travelled, from);
@@ -330,7 +330,7 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         for (int i = 0; i < s->nlights; i++)
             lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
         if (level == 0 && c->alt && m->tex.active) {
-            if (cell && (s->plane_set >> id & 1))
+            if (cell && (s->cull.plane_set >> id & 1))
                 trace_alt_mid(c, &h, lights, 0); /* a plane with a two-tone checker */
             else if (rt_scene_has(s, RT_FX_NOISE) && m->tex.kind != RT_TEX_CHECKER)
                 trace_alt_mid(c, &h, lights, 1); /* a noise texture */
