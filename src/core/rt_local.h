@@ -182,7 +182,7 @@ typedef struct rt_local {
 } rt_local;
 
 /* rt_trace_pixel with the primary hit's local part given by *loc where it applies (loc NULL:
- * rt_trace_pixel itself); such a record keeps no other tone (alt_known 0). */
+ * rt_trace_pixel itself); such a record keeps no other tone (RT_ALT_NONE). */
 void rt_trace_pixel_local(const rt_scene *s, const rt_view *v, const rt_params *p, int x, int y,
                           const rt_local *loc, rt_stats *stats, rt_sample *out);
 
