@@ -1,0 +1,67 @@
+# faults.sh: interrupted, refused and hostile runs leave nothing broken (sourced by tests/run.sh: pass, fail, B and T are its).
+# Each check here failed before its fix; FAULTS_RT=program runs the render checks on another
+# build of rt (the sanitized ones too).
+FR=${FAULTS_RT:-$B/rt-fixed}
+FW=$T/faults
+rm -rf "$FW" && mkdir -p "$FW"
+
+# ---- an interrupted render leaves no temporary or half-written file --------------------------
+# The render is stopped (SIGSTOP) while a temporary file of its output is in the folder, then
+# sent the signal and let go: afterwards the folder holds finished images only.
+interrupt_run() { # signal extension: prints what is wrong, nothing when all is well
+  local sig=$1 ext=$2 d pid tries f tmp=()
+  for tries in 1 2 3 4 5 6 7 8; do
+    d=$FW/int-$sig-$ext-$tries
+    mkdir -p "$d"
+    # a background job starts with SIGINT ignored: env gives it the default action back
+    env --default-signal=INT "$FR" render --frames all --size 640x480 -o "$d/f-%04d.$ext" 2>"$d.err" &
+    pid=$!
+    # poll without forking until a temporary file shows, then freeze the writer
+    for _ in $(seq 200000); do
+      tmp=("$d"/*.tmp-*)
+      [ -e "${tmp[0]}" ] && break
+      kill -0 $pid 2>/dev/null || break
+    done
+    kill -STOP $pid 2>/dev/null
+    tmp=("$d"/*.tmp-*)
+    if [ -e "${tmp[0]}" ]; then
+      kill -"$sig" $pid
+      kill -CONT $pid
+      wait $pid
+      local st=$?
+      tmp=("$d"/*.tmp-*)
+      [ -e "${tmp[0]}" ] && { echo "SIG$sig left ${tmp[*]##*/}"; return; }
+      [ $st -eq $((128 + $(kill -l $sig))) ] || { echo "SIG$sig: exit $st, not ended by the signal"; return; }
+      for f in "$d"/f-*."$ext"; do
+        $B/rt-cmp "$f" "$f" >/dev/null 2>&1 || { echo "SIG$sig left an unreadable ${f##*/}"; return; }
+      done
+      return
+    fi
+    kill -KILL $pid 2>/dev/null
+    kill -CONT $pid 2>/dev/null
+    wait $pid 2>/dev/null
+  done
+  echo "SIG$sig: never caught a $ext being written in 8 tries"
+}
+bad=""
+for ext in png ppm; do
+  for sig in TERM INT; do
+    r=$(interrupt_run $sig $ext)
+    [ -z "$r" ] || bad="$bad $ext: $r;"
+  done
+done
+if [ -z "$bad" ]; then
+  pass "faults: render --frames all stopped by SIGTERM or SIGINT in the middle of writing a PNG or a PPM: exit by the signal, no temporary file, every image left readable"
+else
+  fail "faults: interrupted render:$bad"
+fi
+# A file-size limit (ulimit -f) makes the write fail with one line and exit 1, no file left.
+d=$FW/xfsz && mkdir -p "$d"
+err=$(ulimit -f 100 && "$FR" render --size 320x240 -o "$d/x.ppm" 2>&1 >/dev/null)
+st=$?
+if [ $st -eq 1 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q 'x.ppm: cannot write: File too large' <<<"$err" &&
+   [ -z "$(ls "$d")" ]; then
+  pass "faults: a render over the file-size limit fails with exit 1 and one line, no file left: $err"
+else
+  fail "faults: render over the file-size limit: exit $st, '$err', left: $(ls "$d" | tr '\n' ' ')"
+fi
