@@ -65,3 +65,21 @@ if [ $st -eq 1 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q 'x.ppm: cannot wri
 else
   fail "faults: render over the file-size limit: exit $st, '$err', left: $(ls "$d" | tr '\n' ' ')"
 fi
+
+# ---- the boards under QEMU (platform/arm/qemu.sh, platform/m3/qemu.sh) --------------------------
+# A refused board run keeps the frames an earlier run wrote.
+bad=""
+for board in arm m3; do
+  dir=build/qemu; [ $board = m3 ] && dir=build/qemu-m3
+  platform/$board/qemu.sh frames 0 >/dev/null 2>&1 || bad="$bad $board frames 0 failed;"
+  cp "$dir/fixed-0000.ppm" "$d/$board-0000.ppm" 2>/dev/null
+  platform/$board/qemu.sh frames --depth 9 0 >/dev/null 2>&1 && bad="$bad $board --depth 9 accepted;"
+  cmp -s "$dir/fixed-0000.ppm" "$d/$board-0000.ppm" || bad="$bad $board: frames --depth 9 0 removed fixed-0000.ppm;"
+  platform/$board/qemu.sh frames 0 1.5 >/dev/null 2>&1 && bad="$bad $board 1.5 accepted;"
+  cmp -s "$dir/fixed-0000.ppm" "$d/$board-0000.ppm" || bad="$bad $board: frames 0 1.5 removed fixed-0000.ppm;"
+done
+if [ -z "$bad" ]; then
+  pass "faults: a refused board run (frames --depth 9 0, frames 0 1.5) keeps the frame an earlier run wrote (ARM926 and M3)"
+else
+  fail "faults: refused board runs:$bad"
+fi

@@ -58,11 +58,12 @@ case "$cmd" in
     ;;
   frames)
     [ $# -ge 1 ] || die "frames wants at least one frame number"
-    mkdir -p build/qemu
     for n in "$@"; do
       case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
-      rm -f "build/qemu/$real-$(printf '%04d' "$((10#$n))").ppm"
     done
+    # no file is removed: each frame the board writes replaces its file whole (a temporary file
+    # renamed), so a refused run leaves the earlier frames as they were
+    mkdir -p build/qemu
     set -- --out "build/qemu/$real" "$@"
     ;;
   bench)
