@@ -67,6 +67,30 @@ else
 fi
 
 # ---- the boards under QEMU (platform/arm/qemu.sh, platform/m3/qemu.sh) --------------------------
+# The boards' error lines go to standard error, their log to standard output; QEMU's notice
+# "Timer with period zero, disabling" is not shown.
+bad=""
+while IFS='|' read -r script args want; do
+  # shellcheck disable=SC2086
+  "$script" $args >"$d/b.out" 2>"$d/b.err"
+  st=$?
+  if [ $st -ne 2 ] || [ "$(wc -l <"$d/b.err")" -ne 1 ] || ! grep -q "^intro: error: $want" "$d/b.err" ||
+     grep -q error "$d/b.out" || ! grep -q '^ram: ' "$d/b.out"; then
+    bad="$bad $script $args: exit $st, stderr '$(cat "$d/b.err")', stdout '$(tr '\n' ' ' <"$d/b.out")';"
+  fi
+done <<'CASES'
+platform/arm/qemu.sh|frames --depth 9 0|--depth: expected
+platform/arm/qemu.sh|bench 5 1 1|bench wants
+platform/m3/qemu.sh|frames 1201|frame numbers
+platform/m3/qemu.sh|bench --grid 16 0 0 1|--grid:
+CASES
+platform/m3/qemu.sh bench 0 0 1 >"$d/m3.out" 2>"$d/m3.err"
+st=$?
+if [ -z "$bad" ] && [ $st -eq 0 ] && [ ! -s "$d/m3.err" ] && grep -q '^frames=1 ' "$d/m3.out"; then
+  pass "faults: the boards' errors go to stderr (4 cases, ARM926 and M3), their log to stdout; an M3 bench prints nothing on stderr"
+else
+  fail "faults: board errors:$bad m3 bench 0 0 1: exit $st, stderr '$(head -2 "$d/m3.err" | tr '\n' ' ')'"
+fi
 # A refused board run keeps the frames an earlier run wrote.
 bad=""
 for board in arm m3; do

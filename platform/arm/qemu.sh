@@ -77,7 +77,7 @@ plugin=()
 status=0
 # --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
 # SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
-timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
+qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
   -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then

@@ -51,7 +51,8 @@ case "$cmd" in
       die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-m3-frames renders frames to files instead"
     fi
     echo "qemu: playing the intro at 128x64 on the emulated OLED (16 greys); close the window or press Ctrl-C in this terminal to stop"
-    exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})"
+    exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})" \
+      2> >(sed -u '/Timer with period zero, disabling/d' >&2)
     ;;
   frames)
     [ $# -ge 1 ] || die "frames wants at least one frame number"
@@ -82,7 +83,7 @@ case "$cmd" in
     } | timeout --foreground -k 5 "$timeout_s" qemu-system-arm "${common[@]}" -display none -monitor stdio \
         -serial "file:$log" -icount shift=0,align=off,sleep=off \
         -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >/dev/null 2>&1 || true
-    cat "$log"
+    qemu_log_split <"$log"
     [ -s "$screen" ] || die "no screendump was written (see the log above)"
     exit 0
     ;;
@@ -91,7 +92,7 @@ esac
 
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
-timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
+qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
   -icount shift=0,align=off,sleep=off \
   -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
   status=$?
