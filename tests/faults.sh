@@ -67,6 +67,20 @@ else
 fi
 
 # ---- the boards under QEMU (platform/arm/qemu.sh, platform/m3/qemu.sh) --------------------------
+# show's screen file name never reaches QEMU's monitor: a name with newlines runs no extra monitor
+# command, and the frame is saved under that very name (one with a space too).
+d=$FW/show && mkdir -p "$d"
+weird="$d/a.ppm"$'\n'"screendump $d/injected.ppm"$'\n'"#.ppm"
+platform/m3/qemu.sh show 425 "$weird" >"$d/weird.log" 2>&1
+st1=$?
+platform/m3/qemu.sh show 425 "$d/with space.ppm" >"$d/space.log" 2>&1
+st2=$?
+injected=$(find "$FW" -name injected.ppm)
+if [ $st1 -eq 0 ] && [ $st2 -eq 0 ] && [ -z "$injected" ] && [ -s "$weird" ] && cmp -s "$weird" "$d/with space.ppm"; then
+  pass "faults: m3 show saves the OLED under a name with newlines and a monitor command in it (no command run, no injected.ppm) and under a name with a space"
+else
+  fail "faults: m3 show with odd screen names: exit $st1 and $st2, injected: '$injected'; $(tail -q -n 2 "$d/weird.log" "$d/space.log" | tr '\n' ' ')"
+fi
 # The boards' error lines go to standard error, their log to standard output; QEMU's notice
 # "Timer with period zero, disabling" is not shown.
 bad=""

@@ -69,22 +69,26 @@ case "$cmd" in
     ;;
   show)
     [ $# -eq 1 ] || die "show wants one frame number and the screen file"
-    mkdir -p "$(dirname "$screen")"
-    rm -f "$screen"
-    log=$(mktemp)
-    trap 'rm -f "$log"' EXIT
+    mkdir -p "$(dirname "$screen")" build/qemu-m3
+    # QEMU's monitor reads a command line: the screendump goes to a name of our own (letters,
+    # digits, / - .), then is moved to the screen file, whatever characters its name holds.
+    work=$(mktemp -d build/qemu-m3/show.XXXXXX)
+    trap 'rm -rf "$work"' EXIT
+    log=$work/serial.log
+    : >"$log"
     # The guest logs `shown frame=N` once the frame is on the OLED; then the monitor saves it.
     {
       for _ in $(seq 600); do grep -q '^shown' "$log" 2>/dev/null && break; sleep 0.1; done
       sleep 0.5
-      echo "screendump $screen"
+      echo "screendump $work/screen.ppm"
       sleep 1
       echo quit
     } | timeout --foreground -k 5 "$timeout_s" qemu-system-arm "${common[@]}" -display none -monitor stdio \
         -serial "file:$log" -icount shift=0,align=off,sleep=off \
-        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >/dev/null 2>&1 || true
+        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >"$work/monitor.log" 2>&1 || true
     qemu_log_split <"$log"
-    [ -s "$screen" ] || die "no screendump was written (see the log above)"
+    [ -s "$work/screen.ppm" ] || die "no screendump was written (see the log above)"
+    mv -f "$work/screen.ppm" "$screen"
     exit 0
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
