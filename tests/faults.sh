@@ -81,6 +81,24 @@ if [ $st1 -eq 0 ] && [ $st2 -eq 0 ] && [ -z "$injected" ] && [ -s "$weird" ] && 
 else
   fail "faults: m3 show with odd screen names: exit $st1 and $st2, injected: '$injected'; $(tail -q -n 2 "$d/weird.log" "$d/space.log" | tr '\n' ' ')"
 fi
+# A frame the board refuses fails at once: the guest's one error line on stderr, exit 2.
+bad=""
+for a in "1201" "abc" "--grid 2 0"; do
+  s0=$(date +%s%N)
+  # shellcheck disable=SC2086  # words on purpose
+  err=$(platform/m3/qemu.sh show $a "$d/refused.ppm" 2>&1 >"$d/refused.out")
+  st=$?
+  ms=$((($(date +%s%N) - s0) / 1000000))
+  if [ $st -ne 2 ] || [ $ms -gt 10000 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || ! grep -q '^intro: error: ' <<<"$err" ||
+     grep -q 'error' "$d/refused.out" || [ -e "$d/refused.ppm" ]; then
+    bad="$bad show $a: exit $st after $ms ms, stderr '$err';"
+  fi
+done
+if [ -z "$bad" ]; then
+  pass "faults: m3 show of a refused frame (1201, abc, --grid 2 0) fails within 10 s with the board's one error line on stderr, exit 2"
+else
+  fail "faults: m3 show of a refused frame:$bad"
+fi
 # The boards' error lines go to standard error, their log to standard output; QEMU's notice
 # "Timer with period zero, disabling" is not shown.
 bad=""

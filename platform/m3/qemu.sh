@@ -77,17 +77,34 @@ case "$cmd" in
     log=$work/serial.log
     : >"$log"
     # The guest logs `shown frame=N` once the frame is on the OLED; then the monitor saves it.
+    # A guest that refuses its arguments logs an error and ends (its RAM report, `ram:`) at once.
+    status=0
     {
-      for _ in $(seq 600); do grep -q '^shown' "$log" 2>/dev/null && break; sleep 0.1; done
-      sleep 0.5
-      echo "screendump $work/screen.ppm"
-      sleep 1
+      for _ in $(seq 600); do grep -qE '^(shown|ram:)|error: ' "$log" && break; sleep 0.1; done
+      if grep -q '^shown' "$log"; then
+        sleep 0.5
+        echo "screendump $work/screen.ppm"
+        sleep 1
+      fi
       echo quit
     } | timeout --foreground -k 5 "$timeout_s" qemu-system-arm "${common[@]}" -display none -monitor stdio \
         -serial "file:$log" -icount shift=0,align=off,sleep=off \
-        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >"$work/monitor.log" 2>&1 || true
+        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >"$work/monitor.log" 2>&1 ||
+      status=${PIPESTATUS[1]}
     qemu_log_split <"$log"
-    [ -s "$work/screen.ppm" ] || die "no screendump was written (see the log above)"
+    if ! grep -q '^shown' "$log"; then
+      [ "$status" -ne 0 ] || status=1
+      # the guest's own error line (on standard error above) says why; else say it here
+      if ! grep -qE '^(intro: )?error: ' "$log"; then
+        if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+          echo "qemu.sh: error: the M3 guest showed no frame within $timeout_s s (hung?); QEMU stopped" >&2
+        else
+          echo "qemu.sh: error: the M3 guest ended (status $status) without showing the frame" >&2
+        fi
+      fi
+      exit "$status"
+    fi
+    [ -s "$work/screen.ppm" ] || die "no screendump was written: $(grep -v '^(qemu)\|QEMU\|Timer with period zero' "$work/monitor.log" | head -1)"
     mv -f "$work/screen.ppm" "$screen"
     exit 0
     ;;
