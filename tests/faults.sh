@@ -3,6 +3,7 @@
 # build of rt (the sanitized ones too).
 FR=${FAULTS_RT:-$B/rt-fixed}
 FW=$T/faults
+FTOP=$PWD
 rm -rf "$FW" && mkdir -p "$FW"
 
 # ---- an interrupted render leaves no temporary or half-written file --------------------------
@@ -138,4 +139,34 @@ if [ -z "$bad" ]; then
   pass "faults: a refused board run (frames --depth 9 0, frames 0 1.5) keeps the frame an earlier run wrote (ARM926 and M3)"
 else
   fail "faults: refused board runs:$bad"
+fi
+
+# ---- rt-scenec: never one output over another or over the scene ---------------------------------
+d=$FW/scenec && mkdir -p "$d"
+cp scenes/demo.scene "$d/d.scene"
+echo "keep me" >"$d/x.c"
+bad=""
+# case: expected message | arguments (in $d)
+while IFS='|' read -r want args; do
+  # shellcheck disable=SC2086  # words on purpose
+  err=$(cd "$d" && "$FTOP/$B/rt-scenec" $args 2>&1 >/dev/null)
+  st=$?
+  if [ $st -ne 2 ] || [ "$(wc -l <<<"$err")" -ne 1 ] || ! grep -qF -- "$want" <<<"$err"; then
+    bad="$bad rt-scenec $args: exit $st, '$err';"
+  fi
+done <<'CASES'
+d.scene: the output would replace the scene file d.scene|d.scene -o x.c --effects d.scene
+d.scene: the output would replace|d.scene -o d.scene
+./d.scene: the output would replace|d.scene -o ./d.scene
+--effects: x.c is the same file as -o x.c|d.scene -o x.c --effects x.c
+--effects: ./x.c is the same file as -o x.c|d.scene -o x.c --effects ./x.c
+--effects: y.h is the same file as -o ./y.h|d.scene -o ./y.h --effects y.h
+CASES
+cmp -s "$d/d.scene" scenes/demo.scene || bad="$bad the scene file was changed;"
+[ "$(cat "$d/x.c")" = "keep me" ] || bad="$bad x.c was changed or removed;"
+[ -z "$(ls "$d" | grep -v '^d.scene$\|^x.c$')" ] || bad="$bad left: $(ls "$d" | tr '\n' ' ');"
+if [ -z "$bad" ]; then
+  pass "faults: rt-scenec refuses an output that is the scene or the other output (by name or by path), changing nothing"
+else
+  fail "faults: rt-scenec:$bad"
 fi

@@ -1,7 +1,9 @@
 /* scenec.c: rt-scenec, the build-time scene compiler: a scene file becomes C data plus the set of effects its tracer needs. */
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "outpath.h"
@@ -31,6 +33,23 @@ static FILE *sc_open(const char *path, char *tmp, size_t n)
     if (!f)
         fprintf(stderr, "%s: %s: cannot write\n", sc_name, path);
     return f;
+}
+
+/* Nonzero when paths a and b name the same file: the same name in the same folder (whether or
+ * not the file exists yet), or one existing file under two names (a link). */
+static int sc_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+        return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+    const char *ba = strrchr(a, '/'), *bb = strrchr(b, '/');
+    if (strcmp(ba ? ba + 1 : a, bb ? bb + 1 : b) != 0)
+        return 0;
+    char da[4096], db[4096];
+    snprintf(da, sizeof da, "%.*s", ba ? (int)(ba - a) + 1 : 1, ba ? a : ".");
+    snprintf(db, sizeof db, "%.*s", bb ? (int)(bb - b) + 1 : 1, bb ? b : ".");
+    return stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev &&
+        sa.st_ino == sb.st_ino;
 }
 
 static const char *const sc_effect_names[] = {"shadow",  "specular", "reflect",
@@ -75,6 +94,16 @@ int main(int argc, char **argv)
     if (!in || !out) {
         fprintf(stderr, "%s: %s (usage: %s SCENE -o OUT.c; see %s --help)\n", sc_name,
                 !in ? "no scene file given" : "no output given (-o OUT.c)", sc_name, sc_name);
+        return 2;
+    }
+    /* Each output its own file, neither of them the scene. */
+    if (sc_same_file(out, in) || (hdr && sc_same_file(hdr, in))) {
+        fprintf(stderr, "%s: %s: the output would replace the scene file %s\n", sc_name,
+                sc_same_file(out, in) ? out : hdr, in);
+        return 2;
+    }
+    if (hdr && sc_same_file(out, hdr)) {
+        fprintf(stderr, "%s: --effects: %s is the same file as -o %s\n", sc_name, hdr, out);
         return 2;
     }
     static scn_file f;
