@@ -141,7 +141,7 @@ else
   fail "faults: refused board runs:$bad"
 fi
 
-# ---- rt-scenec: never one output over another or over the scene ---------------------------------
+# ---- rt-scenec: never one output over another or over the scene; C that compiles -----------------
 d=$FW/scenec && mkdir -p "$d"
 cp scenes/demo.scene "$d/d.scene"
 echo "keep me" >"$d/x.c"
@@ -161,12 +161,29 @@ d.scene: the output would replace|d.scene -o d.scene
 --effects: x.c is the same file as -o x.c|d.scene -o x.c --effects x.c
 --effects: ./x.c is the same file as -o x.c|d.scene -o x.c --effects ./x.c
 --effects: y.h is the same file as -o ./y.h|d.scene -o ./y.h --effects y.h
+--name: expected a C identifier that is not a keyword or reserved, got 'int'|d.scene -o y.c --name int
+--name: expected a C identifier that is not a keyword or reserved, got 'while'|d.scene -o y.c --name=while
+--name: expected a C identifier that is not a keyword or reserved, got '__x'|d.scene -o y.c --name __x
+--name: expected a C identifier that is not a keyword or reserved, got 'NULL'|d.scene -o y.c --name NULL
 CASES
 cmp -s "$d/d.scene" scenes/demo.scene || bad="$bad the scene file was changed;"
 [ "$(cat "$d/x.c")" = "keep me" ] || bad="$bad x.c was changed or removed;"
 [ -z "$(ls "$d" | grep -v '^d.scene$\|^x.c$')" ] || bad="$bad left: $(ls "$d" | tr '\n' ' ');"
+# a scene whose path holds */, or *??/ and a newline (a trigraph, a line splice, then /),
+# compiles into C that compiles
+odd1="$d/a*/b.scene" odd2="$d/a*??/"$'\n'"/b.scene"
+mkdir -p "${odd1%/*}" "${odd2%/*}"
+for s in "$odd1" "$odd2"; do
+  cp scenes/demo.scene "$s"
+  if ! $B/rt-scenec "$s" -o "$d/out.c" --effects "$d/out.h" --name scn_odd 2>"$d/sc.err" ||
+     ! printf '#include "%s"\n' "$PWD/$d/out.h" | cat - "$d/out.c" >"$d/both.c" ||
+     ! gcc -std=c11 -Wall -Werror -fsyntax-only -Ifixed -Isrc/core -Isrc/scene -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 \
+       -isystem build/deps/libfixmath/libfixmath "$d/both.c" 2>>"$d/sc.err"; then
+    bad="$bad $(printf %q "$s"): $(head -3 "$d/sc.err" | tr '\n' ' ');"
+  fi
+done
 if [ -z "$bad" ]; then
-  pass "faults: rt-scenec refuses an output that is the scene or the other output (by name or by path), changing nothing"
+  pass "faults: rt-scenec refuses an output that is the scene or the other output (by name or by path) and a keyword or reserved --name, changing nothing; scenes under a*/ and a*??/<newline>/ compile into C that compiles"
 else
   fail "faults: rt-scenec:$bad"
 fi
