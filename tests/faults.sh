@@ -187,3 +187,14 @@ if [ -z "$bad" ]; then
 else
   fail "faults: rt-scenec:$bad"
 fi
+
+# ---- rt-edges refuses a time past the scene's end, as render does ------------------------------
+err=$($B/rt-edges --scene scenes/demo.scene --time 3600 2>&1 >/dev/null)
+st=$?
+end=$($B/rt-edges --scene scenes/demo.scene --time 24 --size 32x24 2>&1 | sed -n 's/^time=//p')
+if [ $st -eq 2 ] && [ "$err" = "rt-edges: --time: 3600.000 s is past the end of scenes/demo.scene (24.000 s)" ] &&
+   [ "$end" = 24.000 ]; then
+  pass "faults: rt-edges --time 3600 on the 24 s demo scene: exit 2, '$err'; --time 24 is measured"
+else
+  fail "faults: rt-edges past the end: exit $st, '$err'; at 24 s: '$end'"
+fi
