@@ -198,3 +198,20 @@ if [ $st -eq 2 ] && [ "$err" = "rt-edges: --time: 3600.000 s is past the end of 
 else
   fail "faults: rt-edges past the end: exit $st, '$err'; at 24 s: '$end'"
 fi
+
+# ---- rt-cmp --oled: an input at most 1024x1024 pixels, whose picture rt-cmp reads back ----------
+d=$FW/oled && mkdir -p "$d"
+{ printf 'P6\n1025 1024\n255\n'; head -c $((1025 * 1024 * 3)) /dev/zero; } >"$d/big.ppm"
+{ printf 'P6\n1024 1024\n255\n'; head -c $((1024 * 1024 * 3)) /dev/zero; } >"$d/max.ppm"
+err=$($B/rt-cmp --oled "$d/big.ppm" "$d/big-oled.ppm" 2>&1 >/dev/null)
+st=$?
+$B/rt-cmp --oled "$d/max.ppm" "$d/max-oled.ppm" 2>"$d/max.err"
+st2=$?
+back=$($B/rt-cmp "$d/max-oled.ppm" "$d/max-oled.ppm" 2>&1)
+if [ $st -eq 2 ] && [ "$(wc -l <<<"$err")" -eq 1 ] && grep -q 'big.ppm: too large for --oled (1025x1024' <<<"$err" &&
+   [ ! -e "$d/big-oled.ppm" ] && [ $st2 -eq 0 ] && grep -q 'pixels=16777216$' <<<"$back"; then
+  pass "faults: rt-cmp --oled refuses a 1025x1024 input (exit 2: $err) and turns a 1024x1024 one into a 4096x4096 picture it reads back"
+else
+  fail "faults: rt-cmp --oled size bound: 1025x1024: exit $st, '$err'; 1024x1024: exit $st2 $(cat "$d/max.err"), read back: $back"
+fi
+rm -f "$d"/*.ppm
