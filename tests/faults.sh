@@ -215,3 +215,31 @@ else
   fail "faults: rt-cmp --oled size bound: 1025x1024: exit $st, '$err'; 1024x1024: exit $st2 $(cat "$d/max.err"), read back: $back"
 fi
 rm -f "$d"/*.ppm
+
+# ---- the in-range bounds (docs/numerics.md) at the scene cube's edges -----------------------------
+# Scenes with the camera, lights, spheres and planes at and near +-4096, radii 1/128 and 2048,
+# lights of intensity 16 and lights on a sphere's normal (tests/edge_scenes.awk, a fixed seed):
+# in the event-counting build every _in operation is the checked one, so a bound that does not
+# hold there is an overflow or domain event; and the release build, which forms them unchecked,
+# must give the same bytes (full mode: every pixel, every ray; and the default adaptive mode).
+d=$FW/edge && mkdir -p "$d"
+awk -v n="${FAULTS_EDGE_SCENES:-100}" -v seed=31 -v dir="$d" -f tests/edge_scenes.awk
+bad="" nsc=0
+for s in "$d"/edge-*.scene; do
+  for mode in full adaptive; do
+    out=$($B/san-fixed/rt render --scene "$s" --size 32x24 --mode "$mode" --stats -o "$d/san.ppm" 2>&1)
+    st=$?
+    $B/rt-fixed render --scene "$s" --size 32x24 --mode "$mode" -o "$d/rel.ppm" 2>/dev/null
+    if [ $st -ne 0 ] || ! grep -q '^fx_overflow=0$' <<<"$out" || ! grep -q '^fx_domain=0$' <<<"$out"; then
+      bad="$bad ${s##*/} $mode: exit $st $(grep -E '^fx_(overflow|domain)=|error' <<<"$out" | head -3 | tr '\n' ' ');"
+    elif ! cmp -s "$d/san.ppm" "$d/rel.ppm"; then
+      bad="$bad ${s##*/} $mode: the release build's frame differs;"
+    fi
+  done
+  nsc=$((nsc + 1))
+done
+if [ -z "$bad" ] && [ $nsc -ge 1 ]; then
+  pass "faults: $nsc scenes at the scene cube's edges (tests/edge_scenes.awk) render with no overflow or domain event in san-fixed, full and adaptive, and the release build gives the same bytes"
+else
+  fail "faults: scenes at the cube's edges:$bad"
+fi
