@@ -1,4 +1,4 @@
-# qemu-settings.sh: the render-settings parsing shared by platform/arm/qemu.sh and platform/m3/qemu.sh (sourced, not run).
+# qemu-settings.sh: the render-settings parsing and the output filter shared by platform/arm/qemu.sh and platform/m3/qemu.sh (sourced, not run).
 #
 # qemu_settings ARGS... checks each argument's characters, then splits them: render's settings
 # (--depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint; as `--opt value`
@@ -25,4 +25,19 @@ qemu_settings() {
       *) args+=("$1"); shift ;;
     esac
   done
+}
+
+# qemu_log_split: copies the guest's log (its UART) from standard input to standard output, but
+# its error lines (`intro: error: ...`, `error: ...`) to standard error, line by line.
+qemu_log_split() {
+  awk '/^(intro: )?error: / { print > "/dev/stderr"; fflush("/dev/stderr"); next } { print; fflush() }'
+}
+
+# qemu_run COMMAND...: runs QEMU's command line with the guest's UART on standard output through
+# qemu_log_split, and QEMU's own standard error less its notice "Timer with period zero,
+# disabling" (the lm3s6965evb's timers, at every start); returns the command's status.
+qemu_run() {
+  local -
+  set -o pipefail
+  { "$@" 2>&1 1>&3 3>&- | sed -u '/Timer with period zero, disabling/d' >&2; } 3>&1 | qemu_log_split
 }

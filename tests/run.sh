@@ -963,6 +963,8 @@ else
   tail -5 "$T/tradeoff-quick.err" | sed 's/^/       /'
 fi
 
+. tests/faults.sh # interrupted, refused and hostile runs leave nothing broken
+
 echo
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -58,11 +58,12 @@ case "$cmd" in
     ;;
   frames)
     [ $# -ge 1 ] || die "frames wants at least one frame number"
-    mkdir -p build/qemu
     for n in "$@"; do
       case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
-      rm -f "build/qemu/$real-$(printf '%04d' "$((10#$n))").ppm"
     done
+    # no file is removed: each frame the board writes replaces its file whole (a temporary file
+    # renamed), so a refused run leaves the earlier frames as they were
+    mkdir -p build/qemu
     set -- --out "build/qemu/$real" "$@"
     ;;
   bench)
@@ -76,7 +77,7 @@ plugin=()
 status=0
 # --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
 # SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
-timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
+qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
   -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then

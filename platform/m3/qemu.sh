@@ -51,15 +51,17 @@ case "$cmd" in
       die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-m3-frames renders frames to files instead"
     fi
     echo "qemu: playing the intro at 128x64 on the emulated OLED (16 greys); close the window or press Ctrl-C in this terminal to stop"
-    exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})"
+    exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})" \
+      2> >(sed -u '/Timer with period zero, disabling/d' >&2)
     ;;
   frames)
     [ $# -ge 1 ] || die "frames wants at least one frame number"
-    mkdir -p build/qemu-m3
     for n in "$@"; do
       case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
-      rm -f "build/qemu-m3/fixed-$(printf '%04d' "$((10#$n))").ppm"
     done
+    # no file is removed: each frame the board writes replaces its file whole (a temporary file
+    # renamed), so a refused run leaves the earlier frames as they were
+    mkdir -p build/qemu-m3
     set -- --out build/qemu-m3/fixed "$@"
     ;;
   bench)
@@ -67,22 +69,43 @@ case "$cmd" in
     ;;
   show)
     [ $# -eq 1 ] || die "show wants one frame number and the screen file"
-    mkdir -p "$(dirname "$screen")"
-    rm -f "$screen"
-    log=$(mktemp)
-    trap 'rm -f "$log"' EXIT
+    mkdir -p "$(dirname "$screen")" build/qemu-m3
+    # QEMU's monitor reads a command line: the screendump goes to a name of our own (letters,
+    # digits, / - .), then is moved to the screen file, whatever characters its name holds.
+    work=$(mktemp -d build/qemu-m3/show.XXXXXX)
+    trap 'rm -rf "$work"' EXIT
+    log=$work/serial.log
+    : >"$log"
     # The guest logs `shown frame=N` once the frame is on the OLED; then the monitor saves it.
+    # A guest that refuses its arguments logs an error and ends (its RAM report, `ram:`) at once.
+    status=0
     {
-      for _ in $(seq 600); do grep -q '^shown' "$log" 2>/dev/null && break; sleep 0.1; done
-      sleep 0.5
-      echo "screendump $screen"
-      sleep 1
+      for _ in $(seq 600); do grep -qE '^(shown|ram:)|error: ' "$log" && break; sleep 0.1; done
+      if grep -q '^shown' "$log"; then
+        sleep 0.5
+        echo "screendump $work/screen.ppm"
+        sleep 1
+      fi
       echo quit
     } | timeout --foreground -k 5 "$timeout_s" qemu-system-arm "${common[@]}" -display none -monitor stdio \
         -serial "file:$log" -icount shift=0,align=off,sleep=off \
-        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >/dev/null 2>&1 || true
-    cat "$log"
-    [ -s "$screen" ] || die "no screendump was written (see the log above)"
+        -semihosting-config "$(semihosting show ${settings[@]+"${settings[@]}"} "$1")" >"$work/monitor.log" 2>&1 ||
+      status=${PIPESTATUS[1]}
+    qemu_log_split <"$log"
+    if ! grep -q '^shown' "$log"; then
+      [ "$status" -ne 0 ] || status=1
+      # the guest's own error line (on standard error above) says why; else say it here
+      if ! grep -qE '^(intro: )?error: ' "$log"; then
+        if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+          echo "qemu.sh: error: the M3 guest showed no frame within $timeout_s s (hung?); QEMU stopped" >&2
+        else
+          echo "qemu.sh: error: the M3 guest ended (status $status) without showing the frame" >&2
+        fi
+      fi
+      exit "$status"
+    fi
+    [ -s "$work/screen.ppm" ] || die "no screendump was written: $(grep -v '^(qemu)\|QEMU\|Timer with period zero' "$work/monitor.log" | head -1)"
+    mv -f "$work/screen.ppm" "$screen"
     exit 0
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
@@ -90,7 +113,7 @@ esac
 
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
-timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
+qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
   -icount shift=0,align=off,sleep=off \
   -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
   status=$?

@@ -3,7 +3,9 @@
 #include "image.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <png.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -179,27 +181,78 @@ static uint8_t *img_pack(const uint32_t *pixels, int width, int height, int stri
     return rgb;
 }
 
+/* The temporary file img_save is writing, removed by img_on_signal when a signal ends the
+ * program meanwhile, so an interrupted run leaves no half-written file behind. The programs
+ * write their files from one thread, one at a time. */
+static char img_tmp[PATH_MAX];
+static volatile sig_atomic_t img_tmp_live;
+/* The signals whose default action ends the program that a user or a supervisor sends. */
+static const int img_stop_signals[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+#define IMG_NSIG (int)(sizeof img_stop_signals / sizeof img_stop_signals[0])
+
+static void img_on_signal(int sig)
+{
+    if (img_tmp_live)
+        unlink(img_tmp);
+    raise(sig); /* the handler was reset to the default (SA_RESETHAND): it ends the program */
+}
+
+/* For the time of a save: img_on_signal handles the signals left at their default action (a
+ * handler of the program's own, such as SDL's, stays), and a file-size limit makes the write
+ * fail with EFBIG instead of ending the program mid-file. */
+typedef struct img_guard {
+    struct sigaction old[IMG_NSIG], old_xfsz;
+    int set[IMG_NSIG], set_xfsz;
+} img_guard;
+
+static void img_guard_on(img_guard *g)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = img_on_signal;
+    sa.sa_flags = SA_RESETHAND;
+    sigfillset(&sa.sa_mask);
+    for (int i = 0; i < IMG_NSIG; i++)
+        g->set[i] = sigaction(img_stop_signals[i], NULL, &g->old[i]) == 0 &&
+            g->old[i].sa_handler == SIG_DFL && sigaction(img_stop_signals[i], &sa, NULL) == 0;
+    sa.sa_handler = SIG_IGN;
+    sa.sa_flags = 0;
+    g->set_xfsz = sigaction(SIGXFSZ, NULL, &g->old_xfsz) == 0 &&
+        g->old_xfsz.sa_handler == SIG_DFL && sigaction(SIGXFSZ, &sa, NULL) == 0;
+}
+
+static void img_guard_off(img_guard *g)
+{
+    for (int i = 0; i < IMG_NSIG; i++)
+        if (g->set[i])
+            sigaction(img_stop_signals[i], &g->old[i], NULL);
+    if (g->set_xfsz)
+        sigaction(SIGXFSZ, &g->old_xfsz, NULL);
+}
+
 int img_save(const char *path, const uint32_t *pixels, int width, int height, int stride, char *err,
              size_t errlen)
 {
     if (!img_path_ok(path))
         return img_fail(err, errlen, "%s: unknown image type (use .png or .ppm)%s", path, "");
+    size_t n = strlen(path);
+    if (n + 12 > sizeof img_tmp)
+        return img_fail(err, errlen, "%s: cannot write: %s", path, "the file name is too long");
     uint8_t *rgb = img_pack(pixels, width, height, stride);
     if (!rgb)
         return img_fail(err, errlen, "%s: out of memory%s", path, "");
 
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 16);
-    if (!tmp) {
-        free(rgb);
-        return img_fail(err, errlen, "%s: out of memory%s", path, "");
-    }
+    img_guard guard;
+    img_guard_on(&guard);
+    char *tmp = img_tmp;
     memcpy(tmp, path, n);
     memcpy(tmp + n, ".tmp-XXXXXX", 12);
+    img_tmp_live = 1; /* before mkstemp creates the file: a signal just after it finds it */
     int fd = mkstemp(tmp);
     if (fd < 0) {
+        img_tmp_live = 0;
         img_fail(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        free(tmp);
+        img_guard_off(&guard);
         free(rgb);
         return -1;
     }
@@ -238,7 +291,8 @@ int img_save(const char *path, const uint32_t *pixels, int width, int height, in
         img_fail(err, errlen, "%s: cannot write: %s", path,
                  saved_errno ? strerror(saved_errno) : "write failed");
     }
-    free(tmp);
+    img_tmp_live = 0;
+    img_guard_off(&guard);
     free(rgb);
     return ok ? 0 : -1;
 }

@@ -459,9 +459,12 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
                     /* a plane below A, the light above both (see above) */
                     real wn = r_neg_in(v3_dot_d_in(va, ob->normal));
                     real k = r_add_in(scene_side(ob, oa->center), r_neg_in(r_muli(delta, 2)));
-                    real hu = r_add_in(r_sqrt_w(w_sub(da2, w_sq(wn))), r_muli(R_LSB, 2));
+                    /* H^2 >= 0, but wn's rounding can take the difference a few LSB below */
+                    wide h2 = w_sub(da2, w_sq(wn));
+                    real hu = r_add_in(r_sqrt_w(h2 > 0 ? h2 : 0), r_muli(R_LSB, 2));
+                    /* the products wide: k reaches beyond 8192 at the scene cube's edges */
                     if (b != a && wn >= 0 && da < R(128.0) &&
-                        r_mul_in(hu, r_add_in(oa->radius, R_EPS_OFFSET)) < r_mul_in(k, da))
+                        w_mul(hu, r_add_in(oa->radius, R_EPS_OFFSET)) < w_mul(k, da))
                         occ &= ~((uint32_t)1 << b);
 #endif
                     continue;

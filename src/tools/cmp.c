@@ -40,6 +40,9 @@ static int cmp_box(img_rgb *im, int n)
 }
 /* QEMU draws each OLED pixel as a square of this side (hw/display/ssd0323.c). */
 #define CMP_OLED_MAGNIFY 4
+/* The largest --oled input, in pixels: its picture is then as large as the images rt-cmp reads
+ * (4096x4096, image.c), 16 times the pixels. */
+#define CMP_OLED_MAX_PIXELS (1024L * 1024L)
 
 static int cmp_usage(FILE *f)
 {
@@ -55,7 +58,8 @@ static int cmp_usage(FILE *f)
             "box-filtered down to B's size first, each pixel the mean of N x N; N in 1..%d.\n"
             "Options take their value as --opt value or --opt=value, each at most once.\n"
             "--oled writes IMAGE as the M3 board's OLED shows it in QEMU (its screendump): each\n"
-            "pixel at 16 levels of grey (plat_grey4), %dx%d pixels of grey 17 x level.\n",
+            "pixel at 16 levels of grey (plat_grey4), %dx%d pixels of grey 17 x level; IMAGE\n"
+            "has at most 1024x1024 pixels.\n",
             CMP_DIFF_GAIN, CMP_BOX_MAX, CMP_OLED_MAGNIFY, CMP_OLED_MAGNIFY);
     return f == stdout ? 0 : 2;
 }
@@ -75,6 +79,14 @@ static int cmp_oled(const char *in, const char *out)
     img_rgb a;
     if (img_load(in, &a, err, sizeof err) != 0) {
         fprintf(stderr, "rt-cmp: %s\n", err);
+        return 2;
+    }
+    if ((long)a.width * a.height > CMP_OLED_MAX_PIXELS) {
+        fprintf(stderr,
+                "rt-cmp: %s: too large for --oled (%dx%d: more than 1024x1024 pixels, whose "
+                "picture would be more than 4096x4096)\n",
+                in, a.width, a.height);
+        img_free(&a);
         return 2;
     }
     int w = a.width * CMP_OLED_MAGNIFY, h = a.height * CMP_OLED_MAGNIFY;

@@ -27,6 +27,11 @@ int app_main(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", ed_name, err);
         return 2;
     }
+    if (ms > file.desc.duration_ms) { /* as render refuses it */
+        fprintf(stderr, "%s: --time: %s s is past the end of %s (%ld.%03ld s)\n", ed_name, time,
+                c.scene, (long)file.desc.duration_ms / 1000, (long)file.desc.duration_ms % 1000);
+        return 2;
+    }
     rt_scene scene;
     rt_view view;
     scn_eval(&file.desc, (int32_t)ms, &scene);
