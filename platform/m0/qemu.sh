@@ -14,6 +14,7 @@
 # the guest's RAM use (`ram: ...`). A frame is byte for byte
 # `build/rt-fixed render --size 128x64 --grid 4 --frame N` (with the same settings). The exit
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
+# With QEMU_PLUGIN=FILE.so,ARGS QEMU loads that TCG plugin (make qemu-profile REAL=m0).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -51,10 +52,12 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
+plugin=()
+[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
 timeout --foreground -k 10 "$timeout_s" qemu-system-arm -M microbit -kernel "$elf" -display none \
-  -serial stdio -monitor none -icount shift=0,align=off,sleep=off \
+  -serial stdio -monitor none -icount shift=0,align=off,sleep=off ${plugin[@]+"${plugin[@]}"} \
   -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
