@@ -7,7 +7,8 @@
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
-#                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
+#                   the Cortex-M3 and M0 under QEMU (instructions per frame, fps at 200, 50, 16 and
+#                   133 MHz);
 #                   QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
 #   make tradeoff   accuracy against cost: render options one at a time, float, fixed and fixed16,
@@ -439,7 +440,7 @@ $(M0_ELF): $(M0_OBJS) $(M0_OBJ)/libfixmath.a platform/m0/link.ld
 
 m0: setup-arm
 	@$(MAKE) -s --no-print-directory $(M0_ELF)
-	@tests/m0_check.sh --print
+	@tests/m0.sh --print
 
 qemu-m0-frames: setup-arm
 	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed
@@ -479,7 +480,7 @@ run: setup
 	@src/tools/run-intro.sh $(if $(filter command line,$(origin REAL)),$(REAL),$(RUN_REAL))
 
 test: setup-test
-	@$(MAKE) --no-print-directory all san arm m3 fuzz-progs
+	@$(MAKE) --no-print-directory all san arm m3 m0 fuzz-progs
 	@tests/run.sh
 
 SECONDS ?= 60
@@ -493,7 +494,7 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF) $(M0_ELF)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
