@@ -25,7 +25,7 @@
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
-#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16|m0] [SETTINGS=...]  where the board's
+#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16|m3|m0] [SETTINGS=...]  where the board's
 #                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
 #   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
 #   make qemu-m3    play the intro on the emulated OLED in QEMU's window
@@ -557,7 +557,7 @@ qemu-bench: setup-arm
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
 qemu-profile: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(M0_ELF) $(PROFILE_PLUGIN)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(M3_ELF) $(M0_ELF) $(PROFILE_PLUGIN)
 	@platform/arm/profile.sh $(REAL) $(SETTINGS) $(if $(filter command line environment,$(origin FRAMES)),$(FRAMES),425 875)
 
 clean:

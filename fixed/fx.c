@@ -60,7 +60,7 @@ static inline uint32_t fx_rsqrt62(uint64_t x)
     uint32_t y = (uint32_t)fx_rsqrt_tab[(X >> 23) - 128] << 16;
     uint32_t y2 = (uint32_t)((FX_UMUL(y, y)) >> 30);
     uint32_t xy2 = (uint32_t)((FX_UMUL(X, y2)) >> 32);
-    return (uint32_t)(((uint64_t)y * ((3u << 30) - xy2)) >> 31);
+    return (uint32_t)((FX_UMUL(y, (3u << 30) - xy2)) >> 31);
 }
 
 /* 2^64 / sqrt(x) for x in [2^62, 2^64), in (2^32, 2^33], to about 2^-33 relative (within a

@@ -9,6 +9,7 @@
 
 #include "board.h"
 #include "platform.h"
+#include "rt.h"
 
 static uint32_t band_px[BOARD_BAND_ROWS * BOARD_W];
 static struct {
@@ -24,7 +25,7 @@ void board_band_init(void) { band_file.fd = -1; }
 
 int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
 {
-    if (width < 1 || height < 1 || width > BOARD_W || height > BOARD_H) {
+    if (width < 1 || height < 1 || width > BOARD_W || height > BOARD_H || height % 2) {
         plat_log(
             "error: frames on this board are at most " BAND_STR(BOARD_W) "x" BAND_STR(BOARD_H));
         return -1;
@@ -40,15 +41,13 @@ int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
     return dest ? board_file_open(&band_file, dest, width, height) : 0;
 }
 
-/* A band larger than the memory would be written past it: the run ends (it cannot happen with
- * the intro's frames at grids 4 and 8, which intro.c allows). */
+/* A band is a row of grid squares (at most the grid's rows, the frame's height being even: its
+ * last corner row is odd, so no square is a row longer) or one pixel row, and the board renders
+ * grids up to RT_GRID_BUILD_MAX: the band memory holds every band of its frames. */
+_Static_assert(BOARD_BAND_ROWS >= RT_GRID_BUILD_MAX && BOARD_H % 2 == 0,
+               "a band of the board's largest grid must fit the band memory");
 uint32_t *plat_band_rows(int y0, int rows)
 {
-    if (rows > BOARD_BAND_ROWS) {
-        plat_log("error: a band larger than the band memory");
-        board_file_end(&band_file, 0);
-        board_exit(1);
-    }
     band_frame.y0 = y0;
     band_frame.rows = rows;
     return band_px;

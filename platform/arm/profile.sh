@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # profile.sh: where the ARM926 image spends its instructions: exact per-function counts of intro frames under QEMU (make qemu-profile).
 #
-# Usage: platform/arm/profile.sh [fixed|float|fixed16|m0] [SETTINGS] N...
-# (m0: the Cortex-M0 image, build/m0/intro-fixed.elf at 128x64, run by platform/m0/qemu.sh; its
-# clock steps 62.5 instructions, so its figures may differ from the plugin's by up to 63 a band.)
+# Usage: platform/arm/profile.sh [fixed|float|fixed16|m3|m0] [SETTINGS] N...
+# (m3, m0: the Cortex-M3 or M0 image, build/m3|m0/intro-fixed.elf at 128x64, run by its board's
+# qemu.sh; a window per band; the M0's clock steps 62.5 instructions, the M3's 20, so their
+# figures may differ from the plugin's by that much a band.)
 # Renders intro frames N... on the board (platform/arm/qemu.sh frames, under -icount) with the
 # TCG plugin build/arm/qemu_profile.so (platform/arm/qemu_profile.c) loaded: it counts every
 # guest instruction per address, inside the frame's rendering only (from rt_render_band_into's first instruction to
@@ -25,11 +26,11 @@ cd "$(dirname "$0")/../.."
 
 die() { printf 'profile.sh: error: %s\n' "$*" >&2; exit 2; }
 real=fixed
-if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ] || [ "$1" = m0 ]; }; then
+if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ] || [ "$1" = m3 ] || [ "$1" = m0 ]; }; then
   real=$1
   shift
 fi
-[ $# -ge 1 ] || die "usage: platform/arm/profile.sh [fixed|float|fixed16|m0] [SETTINGS] N..."
+[ $# -ge 1 ] || die "usage: platform/arm/profile.sh [fixed|float|fixed16|m3|m0] [SETTINGS] N..."
 top=${PROFILE_TOP:-25}
 case "$top" in ''|*[!0-9]*|0) die "PROFILE_TOP must be a whole number, 1 or more, not '$top'" ;; esac
 elf=build/arm/intro-$real.elf
@@ -37,11 +38,11 @@ run=(platform/arm/qemu.sh frames "$real")
 size=320x240
 slack=200 # instructions a frame the board's figures may differ by
 onewindow=1 # the plugin's windows (rt_render_band_into to the clock read) are the frames
-if [ "$real" = m0 ]; then
-  elf=build/m0/intro-fixed.elf
-  run=(platform/m0/qemu.sh frames)
+if [ "$real" = m0 ] || [ "$real" = m3 ]; then
+  elf=build/$real/intro-fixed.elf
+  run=("platform/$real/qemu.sh" frames)
   size=128x64
-  slack=1100 # 16 bands at grid 4, each within a 62.5-instruction clock step, and the reads
+  slack=1100 # up to 16 bands, each within a clock step, and the clock reads
   onewindow=0 # a window per band
 fi
 plugin=build/arm/qemu_profile.so

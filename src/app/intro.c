@@ -341,14 +341,15 @@ int app_main(int argc, char **argv)
             return 2;
         argc = 2 + n;
     }
-    if (scn_intro.nobjects > RT_MAX_OBJECTS) {
-        plat_log("intro: error: the compiled scene has more objects than RT_MAX_OBJECTS");
+#if RT_MAX_LIGHTS < 4 || RT_MAX_MATERIALS < 16 /* below the scene parser's limits (the M boards) */
+    if (scn_intro.nobjects > RT_MAX_OBJECTS || scn_intro.nlights > RT_MAX_LIGHTS ||
+        scn_intro.nmaterials > RT_MAX_MATERIALS) {
+        plat_log("intro: error: the compiled scene exceeds RT_MAX_OBJECTS, _LIGHTS or _MATERIALS");
         return 2;
     }
-#if RT_MAX_LIGHTS < 4 || RT_MAX_MATERIALS < 16 /* below the scene parser's limits (the M boards) */
-    if (scn_intro.nlights > RT_MAX_LIGHTS || scn_intro.nmaterials > RT_MAX_MATERIALS) {
-        plat_log("intro: error: the compiled scene has more lights or materials than the board's "
-                 "RT_MAX_LIGHTS or RT_MAX_MATERIALS");
+#else
+    if (scn_intro.nobjects > RT_MAX_OBJECTS) {
+        plat_log("intro: error: the compiled scene has more objects than RT_MAX_OBJECTS");
         return 2;
     }
 #endif
