@@ -118,11 +118,11 @@ for S in "--octaves 1 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode ful
     fail "m0: frame $n with $S: $(tail -2 "$T/set.log" | tr '\n' ' ')"
   fi
 done
-for S in "--grid 8" "--grid 16" "--grid 2"; do
+for S in "--grid 8" "--grid 16" "--grid 2" "--depth 6"; do
   # shellcheck disable=SC2086
   out=$(platform/m0/qemu.sh bench $S 0 0 1 2>&1)
   st=$?
-  if [ $st -eq 2 ] && grep -q '^intro: error: --grid: ' <<<"$out" && ! grep -q '^frame=' <<<"$out"; then
+  if [ $st -eq 2 ] && grep -Eq '^intro: error: --(grid|depth): ' <<<"$out" && ! grep -q '^frame=' <<<"$out"; then
     pass "m0: bench $S refused on the board: $(grep '^intro: error' <<<"$out")"
   else
     fail "m0: bench $S: status $st: $(tr '\n' ' ' <<<"$out")"

@@ -4,9 +4,10 @@
 # Usage (from the top of the repository; make qemu-m0-frames calls it):
 #   platform/m0/qemu.sh frames [SETTINGS] N...             build/qemu-m0/fixed-NNNN.ppm (128x64 colour)
 #   platform/m0/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
-# SETTINGS are render's options --depth N, --mode full|adaptive, --grid N (4 on this board: its
-# default), --threshold X, --min-contrib X, --octaves N and --footprint on|off, as `--opt value`
-# or `--opt=value` (platform/qemu-settings.sh splits them, the board checks them). The board has
+# SETTINGS are render's options --depth N (at most 5 on this board), --mode full|adaptive,
+# --grid N (4 on this board: its default), --threshold X, --min-contrib X, --octaves N and
+# --footprint on|off, as `--opt value` or `--opt=value` (platform/qemu-settings.sh splits them,
+# the board checks them). The board has
 # no display: frames leave band by band through semihosting. Both commands run under
 # `-icount shift=0` (one guest instruction = 1 ns of virtual time; the SysTick steps 62.5 ns at
 # the chip's 16 MHz, so a frame's count is exact to within 63 instructions a band, the same on

@@ -354,6 +354,13 @@ int app_main(int argc, char **argv)
     }
 #endif
     rt_params p = knobs_params(&intro_knobs, 0);
+#ifdef INTRO_MAX_DEPTH /* a board whose stack holds the ray tree only so deep (the M0) */
+    if (intro_knobs.depth > INTRO_MAX_DEPTH) {
+        intro_log2("intro: error: --depth: the board's stack holds the ray tree to depth ",
+                   INTRO_MAX_DEPTH, ", not ", (uint64_t)intro_knobs.depth);
+        return 2;
+    }
+#endif
     if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work ||
         (RT_GRID_BUILD_MAX < RT_GRID_MAX && p.grid > RT_GRID_BUILD_MAX)) {
         intro_line l = {.n = 0};
