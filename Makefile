@@ -7,7 +7,8 @@
 #   make test       set up if needed, build everything and run the test suite
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
-#                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
+#                   the Cortex-M3 and M0 under QEMU (instructions per frame, fps at 200, 50, 16 and
+#                   133 MHz);
 #                   QUICK=1: a smoke run
 #   make bench-demo the demo scene's ms per frame, both builds side by side
 #   make tradeoff   accuracy against cost: render options one at a time, float, fixed and fixed16,
@@ -24,11 +25,13 @@
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
-#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
+#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16|m3|m0] [SETTINGS=...]  where the board's
 #                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
 #   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
 #   make qemu-m3    play the intro on the emulated OLED in QEMU's window
 #   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
+#   make m0         build/m0/intro-fixed.elf (Cortex-M0, QEMU microbit, 16 KiB of SRAM); its sizes
+#   make qemu-m0-frames FRAMES="0 425 875"   the same frames rendered on the M0, 16 KiB of RAM
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
@@ -108,7 +111,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
+        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames m0 qemu-m0-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -357,17 +360,26 @@ $(PROFILE_PLUGIN): platform/arm/qemu_profile.c
 # ABI, libfixmath compiled from the same fetched source. make m3 builds it and prints its sizes;
 # qemu-m3 plays it on the emulated OLED; qemu-m3-frames renders FRAMES into build/qemu-m3/.
 M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
-M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DINTRO_W=128 -DINTRO_H=64 \
-             -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
+# The Cortex-M boards' sizes, to fit their RAM: frames of 128x64; the scene structure for the
+# intro's 7 objects, 2 lights and 7 materials (intro.c refuses a compiled scene with more); the
+# view's 32 tiles a side (a 128-pixel row in tiles of 4). The M3 renders grids 4 and 8 in bands of
+# up to 8 rows (a row of grid-8 squares, platform/band.c); the M0 (16 KiB) grid 4 alone, its
+# default, in bands of 4 rows: the per-square arrays for grids up to RT_GRID_BUILD_MAX. The M0's
+# stack holds the ray tree to the intro's depth, 5 (--depth 6 would fill it; INTRO_MAX_DEPTH).
+CM_BOARD_DEFS := -DINTRO_W=128 -DINTRO_H=64 -DBOARD_W=128 -DBOARD_H=64 \
+                 -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8 -DRT_VIEW_TILES=32
+M3_BOARD_DEFS := -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8
+M0_BOARD_DEFS := -DBOARD_BAND_ROWS=4 -DRT_GRID_BUILD_MAX=4 -DINTRO_DEFAULT_GRID=4 -DINTRO_MAX_DEPTH=5
+M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_BOARD_DEFS) $(M3_BOARD_DEFS)
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments
 M3_OBJ := $(BUILD)/obj/m3-fixed
-M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/m3/m3.c $(GEN)/scene_intro.c) \
+M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/m3/m3.c $(GEN)/scene_intro.c) \
            $(M3_OBJ)/start.o
 M3_ELF := $(BUILD)/m3/intro-fixed.elf
 M3_FRAMES ?= 0 425 875
 
-$(M3_OBJ)/%.o: %.c | $(FIXMATH_STAMP)
+$(M3_OBJ)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	@mkdir -p $(@D)
 	$(ARM_CC) $(BASE_CFLAGS) $(or $(M3_COLD_OPT),$(OPT)) $(M3_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
 # The command line runs once per command, outside the counted rendering: built for size.
@@ -396,6 +408,46 @@ qemu-m3: setup-gui
 qemu-m3-frames: setup-arm
 	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed
 	@platform/m3/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
+
+# ---- Cortex-M0 image: bare metal for qemu-system-arm -M microbit (platform/m0/) -------------
+# The M3's image for ARMv6-M (an nRF51822: 16 KiB of SRAM, no long multiply, no divide, no CLZ):
+# the same core, intro, board.c and band.c; fixed/fx_armv6m.h gives the numeric layer's products
+# in 32-bit pieces. make m0 builds it and prints its sizes; qemu-m0-frames renders FRAMES into
+# build/qemu-m0/ through semihosting (the board has no display).
+M0_ARCH := -mcpu=cortex-m0 -mthumb -mfloat-abi=soft
+M0_CFLAGS := $(M0_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_BOARD_DEFS) $(M0_BOARD_DEFS)
+M0_LDFLAGS := $(M0_ARCH) -nostartfiles -T platform/m0/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
+              -Wl,--no-warn-rwx-segments
+M0_OBJ := $(BUILD)/obj/m0-fixed
+M0_OBJS := $(patsubst %.c,$(M0_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/m0/m0.c $(GEN)/scene_intro.c) \
+           $(M0_OBJ)/start.o
+M0_ELF := $(BUILD)/m0/intro-fixed.elf
+
+$(M0_OBJ)/%.o: %.c Makefile | $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) $(BASE_CFLAGS) $(or $(M0_COLD_OPT),$(OPT)) $(M0_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
+# The command line runs once per command, outside the counted rendering: built for size.
+$(M0_OBJ)/src/app/intro.o $(M0_OBJ)/src/scene/knobs.o $(M0_OBJ)/platform/board.o: M0_COLD_OPT := -Os
+$(M0_OBJ)/start.o: platform/m0/start.S
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M0_ARCH) -c $< -o $@
+$(M0_OBJ)/libfixmath/%.o: $(FIXMATH_STAMP)
+	@mkdir -p $(@D)
+	$(ARM_CC) -std=c11 $(OPT) $(M0_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$*.c -o $@
+$(M0_OBJ)/libfixmath.a: $(patsubst %.c,$(M0_OBJ)/libfixmath/%.o,$(FIXMATH_SRCS))
+	rm -f $@ && arm-none-eabi-ar rcs $@ $^
+$(M0_ELF): $(M0_OBJS) $(M0_OBJ)/libfixmath.a platform/m0/link.ld
+	@mkdir -p $(@D)
+	$(ARM_CC) $(M0_LDFLAGS) -Wl,-Map=$@.map -o $@ $(M0_OBJS) $(M0_OBJ)/libfixmath.a -lc -lgcc
+-include $(M0_OBJS:.o=.d)
+
+m0: setup-arm
+	@$(MAKE) -s --no-print-directory $(M0_ELF)
+	@tests/m0.sh --print
+
+qemu-m0-frames: setup-arm
+	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed
+	@platform/m0/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
@@ -431,7 +483,7 @@ run: setup
 	@src/tools/run-intro.sh $(if $(filter command line,$(origin REAL)),$(REAL),$(RUN_REAL))
 
 test: setup-test
-	@$(MAKE) --no-print-directory all san arm m3 fuzz-progs
+	@$(MAKE) --no-print-directory all san arm m3 m0 fuzz-progs
 	@tests/run.sh
 
 SECONDS ?= 60
@@ -445,7 +497,7 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF) $(M0_ELF)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
@@ -508,12 +560,12 @@ qemu-bench: setup-arm
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
 qemu-profile: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(PROFILE_PLUGIN)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(M3_ELF) $(M0_ELF) $(PROFILE_PLUGIN)
 	@platform/arm/profile.sh $(REAL) $(SETTINGS) $(if $(filter command line environment,$(origin FRAMES)),$(FRAMES),425 875)
 
 clean:
 	rm -rf $(BUILD)/obj $(BUILD)/san-float $(BUILD)/san-fixed $(BUILD)/san-fixed16 $(BUILD)/san-fixed-sd $(BUILD)/out $(BUILD)/test $(BUILD)/gen \
-	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/m3 $(BUILD)/qemu-m3 $(BUILD)/stress-fixed \
+	       $(BUILD)/scenes $(BUILD)/bench $(BUILD)/arm $(BUILD)/qemu $(BUILD)/m3 $(BUILD)/qemu-m3 $(BUILD)/m0 $(BUILD)/qemu-m0 $(BUILD)/stress-fixed \
 	       $(BUILD)/stress-float $(BUILD)/fuzz-float $(BUILD)/fuzz-fixed $(BUILD)/soak $(HOST_PROGS) \
 	       $(PLAYERS)
 

@@ -58,9 +58,9 @@ static inline uint32_t fx_rsqrt62(uint64_t x)
 {
     uint32_t X = (uint32_t)(x >> 32);
     uint32_t y = (uint32_t)fx_rsqrt_tab[(X >> 23) - 128] << 16;
-    uint32_t y2 = (uint32_t)(((uint64_t)y * y) >> 30);
-    uint32_t xy2 = (uint32_t)(((uint64_t)X * y2) >> 32);
-    return (uint32_t)(((uint64_t)y * ((3u << 30) - xy2)) >> 31);
+    uint32_t y2 = (uint32_t)((FX_UMUL(y, y)) >> 30);
+    uint32_t xy2 = (uint32_t)((FX_UMUL(X, y2)) >> 32);
+    return (uint32_t)((FX_UMUL(y, (3u << 30) - xy2)) >> 31);
 }
 
 /* 2^64 / sqrt(x) for x in [2^62, 2^64), in (2^32, 2^33], to about 2^-33 relative (within a
@@ -68,11 +68,11 @@ static inline uint32_t fx_rsqrt62(uint64_t x)
  * second with the residual 1 - x y^2 formed from every bit of x and y^2. */
 static inline uint64_t fx_rsqrt64(uint64_t x)
 {
-    uint32_t y = fx_rsqrt62(x);   /* 2^62 / sqrt(x) within 2^-17, at most 2^31 */
-    uint64_t q = (uint64_t)y * y; /* at most 2^62 */
+    uint32_t y = fx_rsqrt62(x); /* 2^62 / sqrt(x) within 2^-17, at most 2^31 */
+    uint64_t q = FX_UMUL(y, y); /* at most 2^62 */
     uint32_t xh = (uint32_t)(x >> 32), xl = (uint32_t)x, qh = (uint32_t)(q >> 32), ql = (uint32_t)q;
     /* x q / 2^64 = 2^60 (1 - e / 2^60), |e| < 2^45; the dropped xl ql / 2^64 is below 1 */
-    uint64_t t = (uint64_t)xh * qh + (((uint64_t)xh * ql) >> 32) + (((uint64_t)xl * qh) >> 32);
+    uint64_t t = FX_UMUL(xh, qh) + ((FX_UMUL(xh, ql)) >> 32) + ((FX_UMUL(xl, qh)) >> 32);
     int64_t e = (int64_t)(((uint64_t)1 << 60) - t);
     /* y (1 + e / 2^61), scaled by 4: y e / 2^59, with e / 2^14 within +-2^31 */
     return ((uint64_t)y << 2) + (uint64_t)(((int64_t)(int32_t)(e >> 14) * (int64_t)y) >> 45);
@@ -91,10 +91,10 @@ uint32_t fx_isqrt64(uint64_t n)
     uint64_t x = n << k;
     uint32_t X = (uint32_t)(x >> 32);
     uint32_t y = fx_rsqrt62(x); /* 17 bits: the residual step below doubles them */
-    uint64_t p = (uint64_t)X * y;
+    uint64_t p = FX_UMUL(X, y);
     uint32_t s0 = p >> 62 ? UINT32_MAX : (uint32_t)(p >> 30); /* p / 2^30 capped at 2^32 - 1 */
     /* s += r / (2 s) = r y / 2^63, r = x - s^2 below 2^48 */
-    int64_t r = (int64_t)(x - (uint64_t)s0 * s0);
+    int64_t r = (int64_t)(x - FX_UMUL(s0, s0));
     int64_t s = (int64_t)s0 + (((r >> 16) * (int64_t)y) >> 47);
     /* s is within a unit of sqrt(x); scaled back and rounded it is within one of sqrt(n)
      * rounded, which is the rr with n - rr^2 in (-rr, rr]: one step to it. */
@@ -105,7 +105,7 @@ uint32_t fx_isqrt64(uint64_t n)
      * bit h - 1 of s; rr is at least 1 (x >= 2^62, so s >= 2^31 - 1 and h <= 31). */
     uint32_t s32 = s > (int64_t)UINT32_MAX ? UINT32_MAX : (uint32_t)s;
     uint32_t rr = h ? (s32 >> h) + ((s32 >> (h - 1)) & 1) : s32;
-    int64_t d = (int64_t)(n - (uint64_t)rr * rr); /* |d| < 2^34: wraps back */
+    int64_t d = (int64_t)(n - FX_UMUL(rr, rr)); /* |d| < 2^34: wraps back */
     if (d > (int64_t)rr)
         return rr == UINT32_MAX ? rr : rr + 1; /* 2^32 is capped */
     return rr - (d <= -(int64_t)rr);
@@ -210,9 +210,9 @@ static dir3 fx_norm_zero(real *len)
 static inline uint32_t fx_recip62(uint32_t m)
 {
     uint32_t y = (uint32_t)fx_rsqrt_tab[(m >> 23) - 128] << 16;
-    uint32_t z = (uint32_t)(((uint64_t)y * y) >> 30);
+    uint32_t z = (uint32_t)((FX_UMUL(y, y)) >> 30);
     for (int i = 0; i < 2; i++) {
-        int64_t e = (int64_t)(((uint64_t)1 << 62) - (uint64_t)m * z); /* no wrap */
+        int64_t e = (int64_t)(((uint64_t)1 << 62) - FX_UMUL(m, z)); /* no wrap */
         z = (uint32_t)((int64_t)z + (((int64_t)(int32_t)(e >> 30) * (int64_t)z) >> 32));
     }
     return z;
@@ -227,7 +227,7 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
     int k = __builtin_clz(m);
     uint32_t z = fx_recip62(m << k);
     uint32_t nh = (uint32_t)(n >> 32), nl = (uint32_t)n;
-    uint64_t q = (((uint64_t)nh * z) * 2 + (((uint64_t)nl * z) >> 31)) >> (31 - k);
+    uint64_t q = ((FX_UMUL(nh, z)) * 2 + ((FX_UMUL(nl, z)) >> 31)) >> (31 - k);
     int64_t r = (int64_t)(n - q * m);
     /* r in [-4m, 4m) by one unsigned compare (8m < 2^35) */
     if ((uint64_t)r + 4 * (uint64_t)m >= 8 * (uint64_t)m)
@@ -251,7 +251,7 @@ uint64_t fx_udiv64(uint64_t n, uint32_t m)
  * added, the high word taken and shifted by t. */
 static inline unit fx_mul_r(int32_t v, int32_t rl, uint32_t rh, uint64_t half, int t)
 {
-    uint64_t p = (uint64_t)((int64_t)v * rl) + ((uint64_t)((uint32_t)v * rh) << 32) + half;
+    uint64_t p = (uint64_t)(FX_SMUL(v, rl)) + ((uint64_t)((uint32_t)v * rh) << 32) + half;
     return (unit)((int32_t)(p >> 32) >> t);
 }
 
@@ -267,7 +267,7 @@ static inline __attribute__((always_inline)) dir3 fx_norm_scaled(int32_t sx, int
 {
     dir3 d;
     uint64_t sum =
-        (uint64_t)((int64_t)sx * sx) + (uint64_t)((int64_t)sy * sy) + (uint64_t)((int64_t)sz * sz);
+        (uint64_t)(FX_SMUL(sx, sx)) + (uint64_t)(FX_SMUL(sy, sy)) + (uint64_t)(FX_SMUL(sz, sz));
     int k = __builtin_clz((uint32_t)(sum >> 32)) & ~1; /* the high word is at least 2^26 */
     uint64_t xs = sum << k;
     uint64_t r = fx_rsqrt64(xs);
@@ -355,8 +355,8 @@ real fx_norm32_to(dir3 *out, int32_t x, int32_t y, int32_t z)
  * in 32 x 32-bit products, to about 2^-17 relative: enough for a Q16.16 result. */
 static inline uint32_t fx_rsqrt32(uint32_t x)
 {
-    uint32_t y = fx_rsqrt_tab[(x >> 23) - 128];             /* 2^30 / sqrt(x) within 2^-9 */
-    uint32_t t = (uint32_t)(((uint64_t)x * (y * y)) >> 30); /* x y^2 / 2^30, about 2^30 */
+    uint32_t y = fx_rsqrt_tab[(x >> 23) - 128];           /* 2^30 / sqrt(x) within 2^-9 */
+    uint32_t t = (uint32_t)((FX_UMUL(x, (y * y))) >> 30); /* x y^2 / 2^30, about 2^30 */
     uint64_t r = ((uint64_t)y * ((3u << 30) - t)) >> 15;
     return r > INT32_MAX ? INT32_MAX : (uint32_t)r;
 }
@@ -368,7 +368,7 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
 {
     dir3 d;
     /* sum in [2^30, 3 * 2^32]: xs = sum / 4^j in [2^30, 2^32) */
-    uint64_t sum = (uint64_t)((int64_t)sx * sx + (int64_t)sy * sy + (int64_t)sz * sz);
+    uint64_t sum = (uint64_t)(FX_SMUL(sx, sx) + FX_SMUL(sy, sy) + FX_SMUL(sz, sz));
     int j = sum >> 32 != 0;
     uint32_t xs = j ? (uint32_t)(sum >> 2) : (uint32_t)sum;
     uint32_t r = fx_rsqrt32(xs) >> j; /* 2^46 / sqrt(sum), in (2^29, 2^31) */
@@ -379,7 +379,7 @@ static inline dir3 fx_norm_scaled(int32_t sx, int32_t sy, int32_t sz, int s, int
     if (len) {
         /* sqrt(sum) 2^16 = sum r 2^16 / 2^46 = xs r / 2^(30 - 2j) (below 2^63 before the
          * shift); |v| = sqrt(sum) 2^-s in units of 2^-frac: as Q16.16, xs r 2^sh */
-        int64_t l = (int64_t)((uint64_t)xs * r);
+        int64_t l = (int64_t)(FX_UMUL(xs, r));
         int sh = 2 * j - 30 - frac - s;
         if (sh >= 32)
             *len = fx_sat(INT64_MAX);
@@ -465,7 +465,7 @@ dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t
         as = a32 >> 2;
         bs = b32 >> 2;
     } else {
-        int64_t a = (int64_t)step * ia, b = (int64_t)step * ib; /* Q.30, below 2^44 */
+        int64_t a = FX_SMUL(step, ia), b = FX_SMUL(step, ib); /* Q.30, below 2^44 */
         uint64_t big =
             (a < 0 ? 0 - (uint64_t)a : (uint64_t)a) | (b < 0 ? 0 - (uint64_t)b : (uint64_t)b);
         /* the smallest sh >= 2 with both offsets below 2^(31 + sh): then a and b shifted fit
@@ -475,20 +475,20 @@ dir3 fx_ray_dir(const dir3 *f, const dir3 *r, const dir3 *u, ustep step, int32_t
         bs = (int32_t)(b >> sh);
     }
     if (__builtin_expect(sh == 2, 1)) { /* the usual frame: constant shifts */
-        x = (int64_t)f->x * (1 << 28) + (int64_t)r->x * as + (int64_t)u->x * bs;
-        y = (int64_t)f->y * (1 << 28) + (int64_t)r->y * as + (int64_t)u->y * bs;
-        z = (int64_t)f->z * (1 << 28) + (int64_t)r->z * as + (int64_t)u->z * bs;
+        x = FX_SMUL(f->x, (1 << 28)) + FX_SMUL(r->x, as) + FX_SMUL(u->x, bs);
+        y = FX_SMUL(f->y, (1 << 28)) + FX_SMUL(r->y, as) + FX_SMUL(u->y, bs);
+        z = FX_SMUL(f->z, (1 << 28)) + FX_SMUL(r->z, as) + FX_SMUL(u->z, bs);
     } else {
-        x = (int64_t)f->x * ((int64_t)1 << (30 - sh)) + (int64_t)r->x * as + (int64_t)u->x * bs;
-        y = (int64_t)f->y * ((int64_t)1 << (30 - sh)) + (int64_t)r->y * as + (int64_t)u->y * bs;
-        z = (int64_t)f->z * ((int64_t)1 << (30 - sh)) + (int64_t)r->z * as + (int64_t)u->z * bs;
+        x = (int64_t)f->x * ((int64_t)1 << (30 - sh)) + FX_SMUL(r->x, as) + FX_SMUL(u->x, bs);
+        y = (int64_t)f->y * ((int64_t)1 << (30 - sh)) + FX_SMUL(r->y, as) + FX_SMUL(u->y, bs);
+        z = (int64_t)f->z * ((int64_t)1 << (30 - sh)) + FX_SMUL(r->z, as) + FX_SMUL(u->z, bs);
     }
 #else
-    int32_t a = (int32_t)fx_round_shift((int64_t)step * ia, 14);
-    int32_t b = (int32_t)fx_round_shift((int64_t)step * ib, 14);
-    x = (int64_t)f->x * 65536 + (int64_t)r->x * a + (int64_t)u->x * b;
-    y = (int64_t)f->y * 65536 + (int64_t)r->y * a + (int64_t)u->y * b;
-    z = (int64_t)f->z * 65536 + (int64_t)r->z * a + (int64_t)u->z * b;
+    int32_t a = (int32_t)fx_round_shift(FX_SMUL(step, ia), 14);
+    int32_t b = (int32_t)fx_round_shift(FX_SMUL(step, ib), 14);
+    x = (int64_t)f->x * 65536 + FX_SMUL(r->x, a) + FX_SMUL(u->x, b);
+    y = (int64_t)f->y * 65536 + FX_SMUL(r->y, a) + FX_SMUL(u->y, b);
+    z = (int64_t)f->z * 65536 + FX_SMUL(r->z, a) + FX_SMUL(u->z, b);
 #endif
     return fx_norm64(x, y, z, 0, 0); /* the direction alone: frac does not matter */
 }

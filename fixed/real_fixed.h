@@ -18,6 +18,19 @@
 #include <arm_acle.h> /* __qadd, __qsub */
 #endif
 
+/* The 32 x 32 -> 64-bit products, FX_SMUL (signed) and FX_UMUL (unsigned), of operands of at
+ * most 32 bits (checked at compile time): the compiler's own, or on ARMv6-M (Cortex-M0), which
+ * has no long multiply, fx_armv6m.h's in 32-bit pieces. The same bits either way. */
+#if defined(__ARM_ARCH_6M__)
+#include "fx_armv6m.h"
+#else
+#define FX_SMUL_OP(a, b) ((int64_t)(a) * (int64_t)(b))
+#define FX_UMUL_OP(a, b) ((uint64_t)(a) * (uint64_t)(b))
+#endif
+#define FX_NARROW(a, b) ((void)sizeof(char[sizeof(a) <= 4 && sizeof(b) <= 4 ? 1 : -1]))
+#define FX_SMUL(a, b) (FX_NARROW(a, b), FX_SMUL_OP(a, b))
+#define FX_UMUL(a, b) (FX_NARROW(a, b), FX_UMUL_OP(a, b))
+
 /* Fraction bits of unit, and of a product of two units. */
 #define FX_UF FX_UNIT_FRAC
 #define FX_UF2 (2 * FX_UNIT_FRAC)
@@ -194,7 +207,7 @@ static inline real r_mul(real a, real b)
      * product - 1, then half up: one addend, 0x8000 or 0x7FFF), and fx_sat of the quotient:
      * it saturates exactly where the rounded result does not fit 32 bits or is fix16_overflow
      * (INT32_MIN), and by the sign of the product, which is the sign of the quotient then. */
-    int64_t p = (int64_t)a * b;
+    int64_t p = FX_SMUL(a, b);
     return fx_sat((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 
@@ -213,7 +226,7 @@ static inline real r_neg_in(real a) { return r_neg(a); }
 static inline real r_neg_in(real a) { return -a; }
 static inline real r_mul_in(real a, real b)
 {
-    int64_t p = (int64_t)a * b;
+    int64_t p = FX_SMUL(a, b);
     return (real)((p + (0x8000 + (int32_t)(p >> 63))) >> 16);
 }
 static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint32_t)b); }
@@ -225,7 +238,7 @@ static inline real r_add_in(real a, real b) { return (real)((uint32_t)a + (uint3
 #if FX_COUNT_EVENTS
 static inline real r_mul_c(real a, real b) { return r_mul(a, b); }
 #else
-static inline real r_mul_c(real a, real b) { return (real)(((int64_t)a * b + 0x8000) >> 16); }
+static inline real r_mul_c(real a, real b) { return (real)((FX_SMUL(a, b) + 0x8000) >> 16); }
 #endif
 
 /* a * 2^-n for n >= 0, rounded. */
@@ -235,10 +248,10 @@ static inline real r_shr(real a, int n)
 }
 
 /* v * g for g in {-1, 0, 1}: exactly g > 0 ? v : g < 0 ? r_neg(v) : 0, without branches. */
-static inline real r_mul_sign(real v, int g) { return fx_sat((int64_t)v * g); }
+static inline real r_mul_sign(real v, int g) { return fx_sat(FX_SMUL(v, g)); }
 
 /* Multiply by a small non-negative integer. */
-static inline real r_muli(real a, int32_t i) { return fx_sat((int64_t)a * i); }
+static inline real r_muli(real a, int32_t i) { return fx_sat(FX_SMUL(a, i)); }
 
 static inline real r_div(real a, real b)
 {
@@ -321,7 +334,7 @@ static inline int32_t r_mul_round_in(real a, real b)
     r_floor_split(r_add(r_mul(a, b), 0x8000), &i);
     return i;
 #else
-    int64_t p = (int64_t)a * b;
+    int64_t p = FX_SMUL(a, b);
     uint32_t k = 0x80008000u + (uint32_t)(p >> 63); /* 0x80007FFF for a negative product */
     return (int32_t)((p + k) >> 32);
 #endif
@@ -352,7 +365,7 @@ static inline real r_mul_u(real a, unit u)
 {
     if (FX_POW2_BELOW_UNIT(a))
         return fx_round_shift32(u, FX_UF - __builtin_ctz((uint32_t)a));
-    return fx_sat(fx_round_shift((int64_t)a * u, FX_UF));
+    return fx_sat(fx_round_shift(FX_SMUL(a, u), FX_UF));
 }
 
 /* r_mul_u inside a proven bound (see r_mul_in). */
@@ -363,7 +376,7 @@ static inline __attribute__((always_inline)) real r_mul_u_in(real a, unit u)
 {
     if (FX_POW2_BELOW_UNIT(a))
         return fx_round_shift32(u, FX_UF - __builtin_ctz((uint32_t)a));
-    return (real)fx_round_shift((int64_t)a * u, FX_UF);
+    return (real)fx_round_shift(FX_SMUL(a, u), FX_UF);
 }
 #endif
 
@@ -418,14 +431,14 @@ static inline int r_div_u_above(real a, unit b, real s)
 /* Saturate to unit's 32 bits, +-INT32_MAX: fx_sat. */
 static inline unit u_sat(int64_t v) { return fx_sat(v); }
 
-static inline unit u_mul(unit a, unit b) { return u_sat(fx_round_shift((int64_t)a * b, FX_UF)); }
+static inline unit u_mul(unit a, unit b) { return u_sat(fx_round_shift(FX_SMUL(a, b), FX_UF)); }
 
 /* u_mul of two values within [-1 - 2^-20, 1 + 2^-20] (powers of a cosine): the product stays
  * inside unit's range, so the release build skips the saturation test (see r_mul_in). */
 #if FX_COUNT_EVENTS
 static inline unit u_mul_in(unit a, unit b) { return u_mul(a, b); }
 #else
-static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift((int64_t)a * b, FX_UF); }
+static inline unit u_mul_in(unit a, unit b) { return (unit)fx_round_shift(FX_SMUL(a, b), FX_UF); }
 #endif
 
 static inline unit u_neg(unit a) { return r_neg(a); }
@@ -445,7 +458,7 @@ static inline unit u_add_in(unit a, unit b) { return (unit)((uint32_t)a + (uint3
 #endif
 
 /* unit * integer (pixel offsets along the image plane). */
-static inline unit u_muli(unit a, int32_t i) { return u_sat((int64_t)a * i); }
+static inline unit u_muli(unit a, int32_t i) { return u_sat(FX_SMUL(a, i)); }
 
 static inline unit u_from_real(real a) { return u_sat((int64_t)a * (1 << (FX_UF - 16))); }
 
@@ -507,10 +520,10 @@ static inline uint8_t r_to_byte(real c)
 
 /* ---- wide: Q32.32 ------------------------------------------------------------------------ */
 
-static inline wide w_sq(real a) { return (int64_t)a * a; }
+static inline wide w_sq(real a) { return FX_SMUL(a, a); }
 
 /* a * b as a wide (Q32.32), exact. */
-static inline wide w_mul(real a, real b) { return (int64_t)a * b; }
+static inline wide w_mul(real a, real b) { return FX_SMUL(a, b); }
 
 static inline wide w_add(wide a, wide b) { return a + b; }
 
@@ -521,7 +534,7 @@ static inline wide w_sub(wide a, wide b) { return a - b; }
  * sum of squares stays below 2^63. */
 static inline wide w_len2(vec3 a)
 {
-    return (int64_t)a.x * a.x + (int64_t)a.y * a.y + (int64_t)a.z * a.z;
+    return FX_SMUL(a.x, a.x) + FX_SMUL(a.y, a.y) + FX_SMUL(a.z, a.z);
 }
 
 /* sqrt of a Q32.32 value is a Q16.16 value: the integer square root does it exactly. */
@@ -571,7 +584,7 @@ static inline int r_sqrt_w_below(wide a, int64_t t)
     if (t > ((int64_t)1 << 28))
         return 1;
     uint32_t u = (uint32_t)t; /* in [1, 2^28]: t^2 - t = t (t - 1), one 32 x 32-bit product */
-    return a <= (int64_t)((uint64_t)u * (u - 1));
+    return a <= (int64_t)(FX_UMUL(u, (u - 1)));
 }
 
 /* The sphere test's last step for a shadow segment, without its square root: with
@@ -589,7 +602,7 @@ static inline int r_sphere_span(wide a, real tca, real tmax)
 /* sqrt(a^2 + b^2) without overflow for any a, b (saturates only when the result does). */
 static inline real r_hypot(real a, real b)
 {
-    return fx_sat(fx_isqrt64((uint64_t)((int64_t)a * a) + (uint64_t)((int64_t)b * b)));
+    return fx_sat(fx_isqrt64((uint64_t)(FX_SMUL(a, a)) + (uint64_t)(FX_SMUL(b, b))));
 }
 
 /* ---- vectors ----------------------------------------------------------------------------- */
@@ -597,20 +610,20 @@ static inline real r_hypot(real a, real b)
 /* v . d for a position-like v and a unit d: |v . d| <= |v|. Each product is below 2^61. */
 static inline real v3_dot_d(vec3 v, dir3 d)
 {
-    int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
+    int64_t s = FX_SMUL(v.x, d.x) + FX_SMUL(v.y, d.y) + FX_SMUL(v.z, d.z);
     return fx_sat(fx_round_shift(s, FX_UF));
 }
 
 /* Is v . d > 0, exactly (no rounding of the sum)? */
 static inline int v3_faces(vec3 v, dir3 d)
 {
-    return (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z > 0;
+    return FX_SMUL(v.x, d.x) + FX_SMUL(v.y, d.y) + FX_SMUL(v.z, d.z) > 0;
 }
 
 /* Is a . b < 0 for unit vectors, exactly (no rounding of the sum)? */
 static inline int d3_below(dir3 a, dir3 b)
 {
-    return (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z < 0;
+    return FX_SMUL(a.x, b.x) + FX_SMUL(a.y, b.y) + FX_SMUL(a.z, b.z) < 0;
 }
 
 /* a . b for unit vectors: within 1 + 2^-28 (docs/numerics.md, "Dot products"), inside unit's
@@ -618,7 +631,7 @@ static inline int d3_below(dir3 a, dir3 b)
  * event-counting builds saturate and count. */
 static inline unit d3_dot(dir3 a, dir3 b)
 {
-    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    int64_t s = FX_SMUL(a.x, b.x) + FX_SMUL(a.y, b.y) + FX_SMUL(a.z, b.z);
 #if FX_COUNT_EVENTS
     return u_sat(fx_round_shift(s, FX_UF));
 #else
@@ -656,9 +669,9 @@ static inline dir3 d3_ray_at(const dir3 *f, const dir3 *r, const dir3 *u, ustep 
 /* Unit vector along a x b; *len (may be NULL) gets |a x b| = sin of the angle. */
 static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
 {
-    int64_t x = (int64_t)a.y * b.z - (int64_t)a.z * b.y;
-    int64_t y = (int64_t)a.z * b.x - (int64_t)a.x * b.z;
-    int64_t z = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
+    int64_t x = FX_SMUL(a.y, b.z) - FX_SMUL(a.z, b.y);
+    int64_t y = FX_SMUL(a.z, b.x) - FX_SMUL(a.x, b.z);
+    int64_t z = FX_SMUL(a.x, b.y) - FX_SMUL(a.y, b.x);
     return fx_norm64(x, y, z, FX_UF2, len);
 }
 
@@ -677,17 +690,17 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
  * 0 (and nothing written) when it is further than 2^-12 from unit. */
 static inline int fx_renorm_q30(int32_t a, int32_t b, int32_t c, dir3 *out)
 {
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    int64_t e = FX_SMUL(a, a) + FX_SMUL(b, b) + FX_SMUL(c, c) - ((int64_t)1 << 60);
     if (e > ((int64_t)1 << 48) || e < -((int64_t)1 << 48))
         return 0;
     /* g = e/2 - 3e^2/8 in Q.40: e / 2^20 is below 2^28, its square below 2^56; both e / 2^20
      * and g fit 32 bits, so the products are signed 32x32-bit ones */
     int32_t e40 = (int32_t)(e >> 20);
-    int32_t sq = (int32_t)(((int64_t)e40 * e40) >> 40); /* below 2^16 */
-    int32_t g = (e40 >> 1) - ((3 * sq) >> 3);           /* below 2^27 */
-    out->x = a - (int32_t)fx_round_shift((int64_t)a * g, 40);
-    out->y = b - (int32_t)fx_round_shift((int64_t)b * g, 40);
-    out->z = c - (int32_t)fx_round_shift((int64_t)c * g, 40);
+    int32_t sq = (int32_t)((FX_SMUL(e40, e40)) >> 40); /* below 2^16 */
+    int32_t g = (e40 >> 1) - ((3 * sq) >> 3);          /* below 2^27 */
+    out->x = a - (int32_t)fx_round_shift(FX_SMUL(a, g), 40);
+    out->y = b - (int32_t)fx_round_shift(FX_SMUL(b, g), 40);
+    out->z = c - (int32_t)fx_round_shift(FX_SMUL(c, g), 40);
     return 1;
 }
 
@@ -719,11 +732,11 @@ static inline FX_RENORM_INLINE dir3 fx_renorm_unit_fast(int64_t x, int64_t y, in
 {
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    int64_t e = FX_SMUL(a, a) + FX_SMUL(b, b) + FX_SMUL(c, c) - ((int64_t)1 << 60);
     int32_t g = (int32_t)(e >> 21);
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 40),
-              b - (int32_t)fx_round_shift((int64_t)b * g, 40),
-              c - (int32_t)fx_round_shift((int64_t)c * g, 40)};
+    dir3 d = {a - (int32_t)fx_round_shift(FX_SMUL(a, g), 40),
+              b - (int32_t)fx_round_shift(FX_SMUL(b, g), 40),
+              c - (int32_t)fx_round_shift(FX_SMUL(c, g), 40)};
     return d;
 }
 
@@ -735,7 +748,7 @@ static inline FX_RENORM_INLINE dir3 fx_renorm_unit(int64_t x, int64_t y, int64_t
 #if FX_COUNT_EVENTS
     int32_t a = (int32_t)fx_round_shift(x, 30), b = (int32_t)fx_round_shift(y, 30),
             c = (int32_t)fx_round_shift(z, 30);
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 60);
+    int64_t e = FX_SMUL(a, a) + FX_SMUL(b, b) + FX_SMUL(c, c) - ((int64_t)1 << 60);
     const uint64_t two = (uint64_t)1 << 61;
     if ((uint64_t)x + two >= 2 * two || (uint64_t)y + two >= 2 * two ||
         (uint64_t)z + two >= 2 * two || e >= ((int64_t)1 << 37) || e <= -((int64_t)1 << 37))
@@ -758,13 +771,13 @@ static inline FX_RENORM_INLINE dir3 fx_renorm(int64_t x, int64_t y, int64_t z)
         return fx_norm64(x, y, z, 32, 0);
     int32_t a = (int32_t)fx_round_shift(x, 16), b = (int32_t)fx_round_shift(y, 16),
             c = (int32_t)fx_round_shift(z, 16);
-    int64_t e = (int64_t)a * a + (int64_t)b * b + (int64_t)c * c - ((int64_t)1 << 32);
+    int64_t e = FX_SMUL(a, a) + FX_SMUL(b, b) + FX_SMUL(c, c) - ((int64_t)1 << 32);
     if (__builtin_expect(e > ((int64_t)1 << 22) || e < -((int64_t)1 << 22), 0))
         return fx_norm64(x, y, z, 32, 0);
     int32_t g = (int32_t)(e >> 1); /* e/2 in Q.32, below 2^21 */
-    dir3 d = {a - (int32_t)fx_round_shift((int64_t)a * g, 32),
-              b - (int32_t)fx_round_shift((int64_t)b * g, 32),
-              c - (int32_t)fx_round_shift((int64_t)c * g, 32)};
+    dir3 d = {a - (int32_t)fx_round_shift(FX_SMUL(a, g), 32),
+              b - (int32_t)fx_round_shift(FX_SMUL(b, g), 32),
+              c - (int32_t)fx_round_shift(FX_SMUL(c, g), 32)};
     return d;
 }
 
@@ -816,7 +829,7 @@ static inline dir3 d3_norm_near(vec3 v, rinv k)
     int sh = k.s - 30;
     uint32_t half = 1u << (sh - 1);
     int32_t m = (int32_t)k.m; /* below 2^31 */
-    int64_t px = (int64_t)v.x * m, py = (int64_t)v.y * m, pz = (int64_t)v.z * m;
+    int64_t px = FX_SMUL(v.x, m), py = FX_SMUL(v.y, m), pz = FX_SMUL(v.z, m);
     if ((uint32_t)(px >> 32) + half < 2 * half && (uint32_t)(py >> 32) + half < 2 * half &&
         (uint32_t)(pz >> 32) + half < 2 * half) {
         uint64_t qx = (uint64_t)px + half, qy = (uint64_t)py + half, qz = (uint64_t)pz + half;
@@ -847,9 +860,9 @@ static inline dir3 d3_reflect_k(dir3 d, dir3 n, unit dn)
      * d.x U_ONE / 2 (smlal), doubled (-dn is in range by the bound on dn) */
     const int64_t half = (int64_t)1 << (FX_UF - 1);
     const int32_t m = -dn;
-    int64_t x = 2 * ((int64_t)d.x * half + (int64_t)m * n.x);
-    int64_t y = 2 * ((int64_t)d.y * half + (int64_t)m * n.y);
-    int64_t z = 2 * ((int64_t)d.z * half + (int64_t)m * n.z);
+    int64_t x = 2 * ((int64_t)d.x * half + FX_SMUL(m, n.x));
+    int64_t y = 2 * ((int64_t)d.y * half + FX_SMUL(m, n.y));
+    int64_t z = 2 * ((int64_t)d.z * half + FX_SMUL(m, n.z));
     return fx_renorm_unit(x, y, z);
 }
 
@@ -862,19 +875,19 @@ static inline dir3 d3_reflect(dir3 d, dir3 n) { return d3_reflect_k(d, n, d3_dot
  * signed 32 x 32-bit ones (smull); eta d.x is formed in Q.46 (below 3 * 2^46) and scaled. */
 static inline int d3_refract_k(dir3 d, dir3 n, unit dn, real eta, dir3 *out)
 {
-    int32_t cosi = -dn;                                  /* Q.F, |cosi| <= 1 + 2^-28 */
-    int64_t eta2 = ((int64_t)eta * eta) >> (32 - FX_UF); /* Q.F, at most 9 * 2^F */
-    int32_t sin2 = U_ONE - (int32_t)(((int64_t)cosi * cosi) >> FX_UF); /* Q.F in [0, 1] */
+    int32_t cosi = -dn;                                               /* Q.F, |cosi| <= 1 + 2^-28 */
+    int64_t eta2 = (FX_SMUL(eta, eta)) >> (32 - FX_UF);               /* Q.F, at most 9 * 2^F */
+    int32_t sin2 = U_ONE - (int32_t)((FX_SMUL(cosi, cosi)) >> FX_UF); /* Q.F in [0, 1] */
     const int pre = FX_UF == 30 ? 2 : 0; /* keeps the product below 2^62 */
     int64_t k = U_ONE - ((eta2 * (sin2 >> pre)) >> (FX_UF - pre));
     if (k < 0)
         return 0;
-    int64_t cost = fx_isqrt64((uint64_t)k << FX_UF);  /* Q.F */
-    int64_t m = (((int64_t)eta * cosi) >> 16) - cost; /* Q.F, |m| < 2^(F + 3) */
-    const int64_t e = 1 << (FX_UF - 16);              /* eta d.x in Q.2F */
-    int64_t x = (int64_t)eta * d.x * e + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
-    int64_t y = (int64_t)eta * d.y * e + m * n.y;
-    int64_t z = (int64_t)eta * d.z * e + m * n.z;
+    int64_t cost = fx_isqrt64((uint64_t)k << FX_UF); /* Q.F */
+    int64_t m = ((FX_SMUL(eta, cosi)) >> 16) - cost; /* Q.F, |m| < 2^(F + 3) */
+    const int64_t e = 1 << (FX_UF - 16);             /* eta d.x in Q.2F */
+    int64_t x = FX_SMUL(eta, d.x) * e + m * n.x; /* Q.2F: below 3 * 2^2F + 4 * 2^2F for eta <= 3 */
+    int64_t y = FX_SMUL(eta, d.y) * e + m * n.y;
+    int64_t z = FX_SMUL(eta, d.z) * e + m * n.z;
     *out = fx_renorm(x, y, z);
     return 1;
 }
@@ -893,14 +906,14 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static inline real v3_dot_d_in(vec3 v, dir3 d)
 {
-    int64_t s = (int64_t)v.x * d.x + (int64_t)v.y * d.y + (int64_t)v.z * d.z;
+    int64_t s = FX_SMUL(v.x, d.x) + FX_SMUL(v.y, d.y) + FX_SMUL(v.z, d.z);
     return (real)fx_round_shift(s, FX_UF);
 }
 static inline vec3 d3_scale_in(dir3 d, real s)
 {
-    return v3((real)fx_round_shift((int64_t)s * d.x, FX_UF),
-              (real)fx_round_shift((int64_t)s * d.y, FX_UF),
-              (real)fx_round_shift((int64_t)s * d.z, FX_UF));
+    return v3((real)fx_round_shift(FX_SMUL(s, d.x), FX_UF),
+              (real)fx_round_shift(FX_SMUL(s, d.y), FX_UF),
+              (real)fx_round_shift(FX_SMUL(s, d.z), FX_UF));
 }
 /* The sphere test's discriminant step: is |perp|^2 <= r2, perp = v3_sub_in(l, d3_scale_in(d,
  * tca)) and r2 = w_sq(r) (r > 0, a sphere's radius2)? Where it is, *d2 gets w_len2(perp). The
@@ -911,13 +924,13 @@ static inline vec3 d3_scale_in(dir3 d, real s)
 static inline int r_perp_within(vec3 l, dir3 d, real tca, real r, wide r2, wide *d2)
 {
     const uint32_t lim = 2u * (uint32_t)r;
-    real py = l.y - (real)fx_round_shift((int64_t)tca * d.y, FX_UF);
+    real py = l.y - (real)fx_round_shift(FX_SMUL(tca, d.y), FX_UF);
     if ((uint32_t)py + (uint32_t)r > lim)
         return 0;
-    real px = l.x - (real)fx_round_shift((int64_t)tca * d.x, FX_UF);
+    real px = l.x - (real)fx_round_shift(FX_SMUL(tca, d.x), FX_UF);
     if ((uint32_t)px + (uint32_t)r > lim)
         return 0;
-    real pz = l.z - (real)fx_round_shift((int64_t)tca * d.z, FX_UF);
+    real pz = l.z - (real)fx_round_shift(FX_SMUL(tca, d.z), FX_UF);
     if ((uint32_t)pz + (uint32_t)r > lim)
         return 0;
     *d2 = w_len2(v3(px, py, pz));
@@ -933,11 +946,11 @@ typedef int64_t dotpart;
 static inline dotpart v3_dot_part(vec3 l, dir3 d)
 {
     return ((int64_t)1 << (FX_UF - 1)) -
-        ((int64_t)l.x * d.x + (int64_t)l.y * d.y + (int64_t)l.z * d.z);
+        (FX_SMUL(l.x, d.x) + FX_SMUL(l.y, d.y) + FX_SMUL(l.z, d.z));
 }
 static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
 {
-    int64_t s = part + (int64_t)c.x * d.x + (int64_t)c.y * d.y + (int64_t)c.z * d.z;
+    int64_t s = part + FX_SMUL(c.x, d.x) + FX_SMUL(c.y, d.y) + FX_SMUL(c.z, d.z);
     return (real)(s >> FX_UF);
 }
 #endif

@@ -1,4 +1,4 @@
-/* board.h: what the bare-metal boards (platform/arm/, platform/m3/) share: semihosting files, arguments and exit, the UART log, the RAM report.
+/* board.h: what the bare-metal boards (platform/arm/, platform/m3/, platform/m0/) share: semihosting files, arguments and exit, the UART log, the RAM report.
  *
  * Each board provides board_semi (its semihosting trap: `svc 0x123456` in ARM state, `bkpt
  * 0xab` on a Cortex-M) and board_putc (its UART); platform/board.c builds the rest on them,
@@ -57,6 +57,14 @@ int board_file_end(board_file *f, int ok);
 
 /* Logs "error: CPU exception: WHAT (REG=0x...)" and ends the run with status 3. */
 __attribute__((noreturn)) void board_fault(const char *what, const char *reg, uint32_t value);
+
+/* ---- the Cortex-M boards' bands (platform/band.c) ------------------------------------------
+ * plat_band_* over one buffer of BOARD_BAND_ROWS rows of BOARD_W pixels (frames of at most
+ * BOARD_W x BOARD_H); the board calls board_band_init once before any frame and provides
+ * board_band_show: rows y0 .. y0 + rows - 1 of the frame, `width` pixels of each, `stride`
+ * apart, on its display (or nowhere), before the band is written to the file. */
+void board_band_init(void);
+void board_band_show(const uint32_t *px, int stride, int width, int y0, int rows);
 
 /* Ends the run: QEMU exits with `status`. */
 __attribute__((noreturn)) void board_exit(int status);

@@ -1,4 +1,5 @@
-# qemu-settings.sh: the render-settings parsing and the output filter shared by platform/arm/qemu.sh and platform/m3/qemu.sh (sourced, not run).
+# qemu-settings.sh: the render-settings parsing and the output filter shared by platform/arm/qemu.sh,
+# platform/m3/qemu.sh and platform/m0/qemu.sh (sourced, not run).
 #
 # qemu_settings ARGS... checks each argument's characters, then splits them: render's settings
 # (--depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint; as `--opt value`

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench_all.sh: the intro's frames per second per platform in one table, desktop, ARM926 and Cortex-M3 under QEMU, written to docs/bench.md (make bench).
+# bench_all.sh: the intro's frames per second per platform in one table, desktop, ARM926, Cortex-M3 and Cortex-M0 under QEMU, written to docs/bench.md (make bench).
 #
 # Usage: tests/bench_all.sh [-o FILE]        (default docs/bench.md; with QUICK=1 build/bench/bench-quick.md)
 # Desktop: tests/bench_intro.sh at 320x240 and 640x480, float and fixed, 1 thread and every
@@ -7,7 +7,8 @@
 # seconds, ROUNDS rounds). ARM926: tests/qemu_bench.sh, the fixed and the soft-float image at
 # 320x240, instructions per frame counted by QEMU (frames QEMU_FRAMES = "FIRST LAST STEP").
 # Cortex-M3: platform/m3/qemu.sh bench, the fixed image at the OLED's 128x64, the same frames,
-# fps at the board's 50 MHz.
+# fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames at grid 4 (the
+# board's default: 16 KiB of RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
 # Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
 # on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
 # seconds (make test). Progress goes to standard error; the file is also printed.
@@ -18,6 +19,8 @@ die() { printf 'bench: error: %s\n' "$*" >&2; exit 2; }
 SIZES=320x240,640x480
 CLOCK_MHZ=200   # the clock of tests/qemu_bench.sh's fps
 M3_MHZ=50       # the LM3S6965's clock
+M0_MHZ=16       # the nRF51822's clock
+M0_FAST_MHZ=133 # an RP2040-class Cortex-M0+
 if [ "${QUICK:-0}" = 1 ]; then
   out=build/bench/bench-quick.md
   rounds=${ROUNDS:-1} step=${STEP_S:-24} qemu_frames=${QEMU_FRAMES:-0 24 24}
@@ -34,8 +37,8 @@ esac
 [[ "$step" =~ ^[1-9][0-9]*$ ]] || die "STEP_S must be a whole number of seconds >= 1, not '$step'"
 read -r q_first q_last q_step extra <<<"$qemu_frames" || true
 [ -n "$q_step" ] && [ -z "${extra:-}" ] || die "QEMU_FRAMES must be 'FIRST LAST STEP', not '$qemu_frames'"
-for f in build/rt-float build/rt-fixed build/arm/intro-fixed.elf build/arm/intro-float.elf build/m3/intro-fixed.elf; do
-  [ -x "$f" ] || [ -f "$f" ] || die "$f is missing: run make all arm m3 first"
+for f in build/rt-float build/rt-fixed build/arm/intro-fixed.elf build/arm/intro-float.elf build/m3/intro-fixed.elf build/m0/intro-fixed.elf; do
+  [ -x "$f" ] || [ -f "$f" ] || die "$f is missing: run make all arm m3 m0 first"
 done
 mkdir -p build/bench "$(dirname "$out")"
 
@@ -58,6 +61,12 @@ platform/m3/qemu.sh bench $q_first $q_last $q_step >build/bench/qemu-m3.log 2>&1
   die "the M3 image failed (build/bench/qemu-m3.log): $(tail -1 build/bench/qemu-m3.log)"
 printf 'm3\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=//p' build/bench/qemu-m3.log)" \
   "$(sed -n 's/^worst=//p' build/bench/qemu-m3.log)" >>"$rows"
+echo "bench: Cortex-M0 image, frames $q_first..$q_last every $q_step" >&2
+# shellcheck disable=SC2086
+platform/m0/qemu.sh bench $q_first $q_last $q_step >build/bench/qemu-m0.log 2>&1 ||
+  die "the M0 image failed (build/bench/qemu-m0.log): $(tail -1 build/bench/qemu-m0.log)"
+printf 'm0\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=//p' build/bench/qemu-m0.log)" \
+  "$(sed -n 's/^worst=//p' build/bench/qemu-m0.log)" >>"$rows"
 took=$(($(date +%s) - start))
 q_n=$(grep -c '^frame=' build/bench/qemu-fixed.log)
 d_n=$(seq 0 "$step" 48 | wc -l)
@@ -76,12 +85,14 @@ kept=""
   echo
   echo "| platform | build | size | threads | mean frame | worst frame | mean fps | worst-frame fps |"
   echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"
-  awk -F'\t' -v mhz=$CLOCK_MHZ -v m3mhz=$M3_MHZ '
+  awk -F'\t' -v mhz=$CLOCK_MHZ -v m3mhz=$M3_MHZ -v m0mhz=$M0_MHZ -v m0fast=$M0_FAST_MHZ '
     $1 == "desktop" { printf "| desktop | %s | %s | %d | %.2f ms | %.2f ms | %.1f | %.1f |\n", $2, $3, $4, $5, $6, 1000 / $5, 1000 / $6 }
     $1 == "arm926"  { printf "| ARM926, QEMU | %s | %s | %d | %.1f M instructions | %.1f M instructions | %.2f* | %.2f* |\n",
                              ($2 == "float" ? "soft-float" : "fixed"), $3, $4, $5 / 1e6, $6 / 1e6, mhz * 1e6 / $5, mhz * 1e6 / $6 }
     $1 == "m3"      { printf "| Cortex-M3, QEMU | fixed | %s | %d | %.1f M instructions | %.1f M instructions | %.2f** | %.2f** |\n",
-                             $3, $4, $5 / 1e6, $6 / 1e6, m3mhz * 1e6 / $5, m3mhz * 1e6 / $6 }' "$rows"
+                             $3, $4, $5 / 1e6, $6 / 1e6, m3mhz * 1e6 / $5, m3mhz * 1e6 / $6 }
+    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed, grid 4 | %s | %d | %.1f M instructions | %.1f M instructions | %.2f / %.2f*** | %.2f / %.2f*** |\n",
+                             $3, $4, $5 / 1e6, $6 / 1e6, m0mhz * 1e6 / $5, m0fast * 1e6 / $5, m0mhz * 1e6 / $6, m0fast * 1e6 / $6 }' "$rows"
   echo
   echo "\\* ARM926 fps: **at a $CLOCK_MHZ MHz clock, assuming one instruction per cycle** (QEMU counts"
   echo "instructions, not cycles; a real ARM926 spends more cycles than instructions on loads,"
@@ -90,6 +101,11 @@ kept=""
   echo "\\*\\* Cortex-M3 fps: **at the LM3S6965's $M3_MHZ MHz, assuming one instruction per cycle**: the"
   echo "intro at the OLED's 128x64, rendered band by band (no frame in RAM), the same frames as the"
   echo "ARM926's; sending the bands to the OLED is not counted (docs/m3.md)."
+  echo
+  echo "\\*\\*\\* Cortex-M0 fps: **at the nRF51822's $M0_MHZ MHz / at $M0_FAST_MHZ MHz (an RP2040-class"
+  echo "clock), assuming one instruction per cycle**: the same frames at grid 4, the board's default"
+  echo "(grid 8's band and working storage do not fit its 16 KiB of RAM), with no long multiply, no"
+  echo "divide and no CLZ (docs/m0.md)."
   echo
   echo "Desktop: the tracer's own time per frame (\`render --time T --size S --threads N --stats\`,"
   echo "its \`ms=\`: rendering, without writing the file), default adaptive mode, the intro every"

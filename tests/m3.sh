@@ -125,7 +125,7 @@ M3="-mcpu=cortex-m3 -mthumb -mfloat-abi=soft"
 # shellcheck disable=SC2086
 if arm-none-eabi-gcc -std=c11 -O2 $M3 -ffreestanding -Iplatform -c tests/arm_fault.c -o "$T/fault.o" &&
    arm-none-eabi-gcc $M3 -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-     -Wl,--no-warn-rwx-segments -o "$T/fault.elf" "$T/fault.o" "$MO/start.o" "$MO/platform/board.o" "$MO/platform/m3/m3.o" -lc -lgcc; then
+     -Wl,--no-warn-rwx-segments -o "$T/fault.elf" "$T/fault.o" "$MO/start.o" "$MO/platform/board.o" "$MO/platform/band.o" "$MO/platform/m3/m3.o" -lc -lgcc; then
   timeout --foreground -k 5 30 qemu-system-arm -M lm3s6965evb -display none -serial stdio -monitor none \
     -semihosting-config enable=on,target=native,arg=fault -kernel "$T/fault.elf" </dev/null >"$T/fault.log" 2>&1
   st=$?

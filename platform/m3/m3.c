@@ -2,7 +2,7 @@
  *
  * The Stellaris LM3S6965 has 64 KiB of SRAM and its evaluation board a 128x64 OLED with 16 grey
  * levels behind an SSD0323 controller, which keeps the picture itself: frames come here band by
- * band (plat_band_*), each band is turned into grey and sent over the SSI (PL022) bus, and with a
+ * band (plat_band_*, platform/band.c), each band is turned into grey and sent over the SSI (PL022) bus, and with a
  * file name its colours also go to the host through semihosting. No frame is ever held in RAM.
  * What QEMU's models do (hw/display/ssd0323.c, hw/arm/stellaris.c, hw/ssi/pl022.c): the OLED
  * takes column (0x15) and row (0x75) windows, 64 bytes a row, the left pixel in the high nibble,
@@ -17,9 +17,6 @@
 #include "platform.h"
 
 #define M3_W 128
-#define M3_H 64
-/* Rows a band may have: a row of the intro's grid-8 squares and the frame's last row. */
-#define M3_BAND_ROWS 9
 
 #define M3_REG(a) (*(volatile uint32_t *)(a))
 
@@ -163,66 +160,13 @@ static void m3_oled_rows(const uint32_t *px, int stride, int y0, int rows)
     }
 }
 
-/* ---- bands --------------------------------------------------------------------------------- */
+/* ---- bands (platform/band.c) --------------------------------------------------------------- */
 
-static uint32_t m3_band[M3_BAND_ROWS * M3_W];
-static struct {
-    int width, height; /* of the frame begun */
-    int y0, rows;      /* the band last given out */
-} m3_frame;
-static board_file m3_file; /* the frame's PPM, while one is written (fd >= 0) */
-
-int plat_band_begin(plat_frame *f, int width, int height, const char *dest)
+/* The band on the OLED when the frame is the display's width. */
+void board_band_show(const uint32_t *px, int stride, int width, int y0, int rows)
 {
-    if (width < 1 || height < 1 || width > M3_W || height > M3_H) {
-        plat_log("error: frames on this board are at most 128x64");
-        return -1;
-    }
-    board_file_end(&m3_file, 0); /* a frame left unfinished */
-    m3_frame.width = width;
-    m3_frame.height = height;
-    m3_frame.y0 = m3_frame.rows = 0;
-    f->pixels = m3_band;
-    f->width = width;
-    f->stride = M3_W;
-    f->height = M3_BAND_ROWS < height ? M3_BAND_ROWS : height;
-    return dest ? board_file_open(&m3_file, dest, width, height) : 0;
-}
-
-uint32_t *plat_band_rows(int y0, int rows)
-{
-    m3_frame.y0 = y0;
-    m3_frame.rows = rows;
-    return m3_band;
-}
-
-int plat_band_present(void)
-{
-    int y0 = m3_frame.y0, rows = m3_frame.rows, w = m3_frame.width;
-    if (rows < 1 || rows > M3_BAND_ROWS || y0 < 0 || y0 + rows > m3_frame.height) {
-        plat_log("error: a band outside the frame, or larger than the band memory");
-        board_file_end(&m3_file, 0);
-        return -1;
-    }
-    if (w == M3_W)
-        m3_oled_rows(m3_band, M3_W, y0, rows);
-    if (m3_file.fd >= 0) {
-        /* Each row becomes its 3 w bytes of RGB in place (the band has been shown): byte 3 x + 2
-         * lies within pixel x, read before it is overwritten. */
-        for (int y = 0; y < rows; y++) {
-            const uint32_t *p = m3_band + y * M3_W;
-            uint8_t *rgb = (uint8_t *)(m3_band + y * M3_W);
-            for (int x = 0; x < w; x++) {
-                uint32_t v = p[x];
-                rgb[3 * x] = (uint8_t)(v >> 16);
-                rgb[3 * x + 1] = (uint8_t)(v >> 8);
-                rgb[3 * x + 2] = (uint8_t)v;
-            }
-            if (board_file_write(&m3_file, rgb, (uint32_t)w * 3) != 0)
-                return board_file_end(&m3_file, 0);
-        }
-    }
-    return y0 + rows == m3_frame.height ? board_file_end(&m3_file, 1) : 0;
+    if (width == M3_W)
+        m3_oled_rows(px, stride, y0, rows);
 }
 
 /* ---- start-up, the end of a run ------------------------------------------------------------ */
@@ -292,7 +236,7 @@ void m3_main(void)
 {
     static char cmdline[256];
     static char *argv[24];
-    m3_file.fd = -1;
+    board_band_init();
     m3_clock_init();
     m3_io_init();
     board_run(cmdline, sizeof cmdline, argv, (int)(sizeof argv / sizeof *argv));

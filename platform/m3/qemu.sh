@@ -111,10 +111,12 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
+plugin=() # QEMU_PLUGIN=FILE.so,ARGS: a TCG plugin (make qemu-profile REAL=m3)
+[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
 qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
-  -icount shift=0,align=off,sleep=off \
+  -icount shift=0,align=off,sleep=off ${plugin[@]+"${plugin[@]}"} \
   -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
   status=$?
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then

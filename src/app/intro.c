@@ -39,9 +39,18 @@
 
 /* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): two rows of
  * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
- * default). Grids 2 and 16 need about 10 KB more, beyond the board's 32 KiB RAM budget. */
-#define INTRO_WORK(g) (2 * (INTRO_W / (g) + 2) + ((g) + 1) * ((g) + 1))
+ * default), or 4 alone where the build renders no grid above (RT_GRID_BUILD_MAX: the Cortex-M0,
+ * whose 16 KiB of RAM take grid 4's storage and band, not grid 8's; its default is then 4,
+ * INTRO_DEFAULT_GRID). Grids 2 and 16 need about 10 KB more, beyond the boards' RAM budgets. */
+#define INTRO_WORK(g) (2 * ((INTRO_W - 1 + (g)-1) / (g) + 1) + ((g) + 1) * ((g) + 1))
+#if RT_GRID_BUILD_MAX >= 8
 #define INTRO_WORK_SAMPLES (INTRO_WORK(4) > INTRO_WORK(8) ? INTRO_WORK(4) : INTRO_WORK(8))
+#else
+#define INTRO_WORK_SAMPLES INTRO_WORK(4)
+#endif
+#ifndef INTRO_DEFAULT_GRID
+#define INTRO_DEFAULT_GRID KNOBS_DEFAULT_GRID
+#endif
 static rt_sample intro_work[INTRO_WORK_SAMPLES];
 static rt_scene intro_scene;
 static knobs intro_knobs = KNOBS_DEFAULTS; /* the command's render settings */
@@ -323,21 +332,43 @@ static int intro_take_knobs(int argc, char **argv)
 
 int app_main(int argc, char **argv)
 {
+#if INTRO_DEFAULT_GRID != KNOBS_DEFAULT_GRID
+    intro_knobs.grid = INTRO_DEFAULT_GRID;
+#endif
     if (argc > 2) {
         int n = intro_take_knobs(argc - 2, argv + 2);
         if (n < 0)
             return 2;
         argc = 2 + n;
     }
+#if RT_MAX_LIGHTS < 4 || RT_MAX_MATERIALS < 16 /* below the scene parser's limits (the M boards) */
+    if (scn_intro.nobjects > RT_MAX_OBJECTS || scn_intro.nlights > RT_MAX_LIGHTS ||
+        scn_intro.nmaterials > RT_MAX_MATERIALS) {
+        plat_log("intro: error: the compiled scene exceeds RT_MAX_OBJECTS, _LIGHTS or _MATERIALS");
+        return 2;
+    }
+#else
     if (scn_intro.nobjects > RT_MAX_OBJECTS) {
         plat_log("intro: error: the compiled scene has more objects than RT_MAX_OBJECTS");
         return 2;
     }
+#endif
     rt_params p = knobs_params(&intro_knobs, 0);
-    if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work) {
+#ifdef INTRO_MAX_DEPTH /* a board whose stack holds the ray tree only so deep (the M0) */
+    if (intro_knobs.depth > INTRO_MAX_DEPTH) {
+        intro_log2("intro: error: --depth: the board's stack holds the ray tree to depth ",
+                   INTRO_MAX_DEPTH, ", not ", (uint64_t)intro_knobs.depth);
+        return 2;
+    }
+#endif
+    if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work ||
+        (RT_GRID_BUILD_MAX < RT_GRID_MAX && p.grid > RT_GRID_BUILD_MAX)) {
         intro_line l = {.n = 0};
         intro_str(&l,
-                  "intro: error: --grid: the board's working storage holds grids 4 and 8, not ");
+                  RT_GRID_BUILD_MAX >= 8
+                      ? "intro: error: --grid: the board's working storage holds grids 4 and "
+                        "8, not "
+                      : "intro: error: --grid: the board's working storage holds grid 4, not ");
         intro_num(&l, (uint64_t)p.grid);
         plat_log(l.s);
         return 2;

@@ -78,13 +78,15 @@ static inline int32_t noise_dot(uint32_t h, const int32_t dots[16], int c)
  * derivatives at 0 and 1. t^3 is kept in Q.32 and the factor 10 - t (15 - 6t) in Q16.16, each
  * rounded once: within 2 LSB of the exact value. The last rounding adds the product's bit 31
  * to its high word (the carry of adding 2^31). */
+#ifndef FX_UMUL /* the float build: the compiler's 32 x 32 -> 64-bit product (real_fixed.h) */
+#define FX_UMUL(a, b) ((uint64_t)(a) * (uint64_t)(b))
+#endif
 static inline int32_t noise_fade(uint32_t t)
 {
-    uint32_t t3 =
-        (uint32_t)((((uint64_t)(t * t) * t + (NOISE_ONE >> 1)) << (32 - NOISE_FRAC)) >> 32);
+    uint32_t t3 = (uint32_t)(((FX_UMUL(t * t, t) + (NOISE_ONE >> 1)) << (32 - NOISE_FRAC)) >> 32);
     uint32_t inner = 10 * NOISE_ONE -
-        (uint32_t)(((uint64_t)t * (15 * NOISE_ONE - 6 * t) + (NOISE_ONE >> 1)) >> NOISE_FRAC);
-    uint64_t p = (uint64_t)t3 * inner;
+        (uint32_t)((FX_UMUL(t, 15 * NOISE_ONE - 6 * t) + (NOISE_ONE >> 1)) >> NOISE_FRAC);
+    uint64_t p = FX_UMUL(t3, inner);
     return (int32_t)((uint32_t)(p >> 32) + ((uint32_t)p >> 31));
 }
 

@@ -23,8 +23,14 @@
 #if RT_MAX_OBJECTS > 32 || RT_MAX_OBJECTS < 1
 #error "RT_MAX_OBJECTS must be 1..32: sets of objects are 32-bit masks"
 #endif
+/* Lights and materials a scene may have; the Cortex-M boards define them to their compiled
+ * scene's (Makefile: BOARD_MAX_LIGHTS, BOARD_MAX_MATERIALS; intro.c refuses a scene with more). */
+#ifndef RT_MAX_LIGHTS
 #define RT_MAX_LIGHTS 4
+#endif
+#ifndef RT_MAX_MATERIALS
 #define RT_MAX_MATERIALS 16
+#endif
 #define RT_MAX_DEPTH 8
 /* Nodes of the ray tree stored per sample (primary hit first, then secondary hits in
  * depth-first order, refraction before reflection). Further nodes are counted, not stored. */
@@ -136,7 +142,9 @@ typedef struct rt_scene {
 
 /* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
  * power-of-two squares (at least 4 pixels) that keep both counts within it. */
-#define RT_VIEW_TILES 40
+#ifndef RT_VIEW_TILES
+#define RT_VIEW_TILES 40 /* the Cortex-M boards' 128x64 frames need 32 (Makefile) */
+#endif
 
 /* The camera prepared for one image size: primary ray of pixel (x, y) is
  * eye + t * unit(fwd + right * step*(2x+1-w) + up * step*(h-2y-1)). */
@@ -184,6 +192,12 @@ typedef struct rt_sample {
  * --grid square, level k its halves k times over. */
 #define RT_GRID_MAX 16
 #define RT_GRID_LEVELS 4
+/* The largest grid a build renders (the size of the per-square arrays on the stack of
+ * subsample.c): RT_GRID_MAX, or less on a board that offers only smaller grids (the Cortex-M
+ * boards: 8) and refuses the others before rendering (rt_render_adaptive draws nothing then). */
+#ifndef RT_GRID_BUILD_MAX
+#define RT_GRID_BUILD_MAX RT_GRID_MAX
+#endif
 
 /* full: every pixel traced; adaptive: the thesis' adaptive subsampling; probe: adaptive
  * subsampling whose new points are probed first and shaded only where needed (probe.c). */

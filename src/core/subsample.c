@@ -234,7 +234,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
     /* This band's rows of squares, and the pixel rows it owns. */
     int r0 = (int)((long)nrows * band / nbands), r1 = (int)((long)nrows * (band + 1) / nbands);
-    if (r0 == r1)
+    if (r0 == r1 || (RT_GRID_BUILD_MAX < RT_GRID_MAX && g > RT_GRID_BUILD_MAX))
         return;
     ss_ctx c = {.scene = s,
                 .view = v,

@@ -76,7 +76,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
     /* tone 0 into the frame, tone 1 aside (a split square's pixels are all written again by its
      * parts); each pixel then takes its own cell's */
     uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    uint32_t other[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    uint32_t other[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
     for (int t = 0; t < 2; t++) {
         const rt_color *kc[4];
         for (int i = 0; i < 4; i++) {
@@ -88,7 +88,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
         }
         if (rt_corners_differ(kp, c->thr8) != RT_SPLIT_NONE)
             return 0;
-        ss_fill(t ? other : dst, t ? RT_GRID_MAX + 1 : c->stride, w, h, cols, rows, kc);
+        ss_fill(t ? other : dst, t ? RT_GRID_BUILD_MAX + 1 : c->stride, w, h, cols, rows, kc);
     }
     /* Each pixel's cell, coarse to fine over the square's lattice (its pixels, and its right
      * column and bottom row for their neighbours): looked up at the points whose coordinates
@@ -99,8 +99,8 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
      * axis: cells so small that points four pixels apart are four cells apart have tones no
      * picture resolves.) Points traced before keep their colour and give their cell. */
     const rt_material *m = &s->materials[s->objects[id].material];
-    const int cs = RT_GRID_MAX + 1;
-    uint8_t cid[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    const int cs = RT_GRID_BUILD_MAX + 1;
+    uint8_t cid[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
     for (int d = 4; d >= 1; d >>= 1)
         for (int j = 0; j <= h && (d > 1 || j < rows); j += d) {
             /* the row's points not done at a coarser step: every d-th, or (a row done at
@@ -190,12 +190,12 @@ __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_
     /* A / 2 aside and B into the frame, as ss_fill interpolates colours, as bytes; each pixel
      * then gets b x A + B from them */
     const int id = sm->hits[0].object, cols = ss_cols(w, own), rows = ss_rows(h, own),
-              cs = RT_GRID_MAX + 1;
+              cs = RT_GRID_BUILD_MAX + 1;
     const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
     const rt_params *p = c->params;
     const real tmax = r_muli(R_SCENE_MAX, 2);
     uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    uint32_t half_a[(RT_GRID_MAX + 1) * (RT_GRID_MAX + 1)];
+    uint32_t half_a[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
     ss_fill(half_a, cs, w, h, cols, rows, ka);
     ss_fill(dst, c->stride, w, h, cols, rows, kb);
     for (int j = 0; j < rows; j++, dst += c->stride)

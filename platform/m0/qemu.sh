@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# qemu.sh: runs the Cortex-M0 intro image on qemu-system-arm -M microbit (an nRF51822, 16 KiB of SRAM): render frames to files or benchmark a stretch.
+#
+# Usage (from the top of the repository; make qemu-m0-frames calls it):
+#   platform/m0/qemu.sh frames [SETTINGS] N...             build/qemu-m0/fixed-NNNN.ppm (128x64 colour)
+#   platform/m0/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
+# SETTINGS are render's options --depth N (at most 5 on this board), --mode full|adaptive,
+# --grid N (4 on this board: its default), --threshold X, --min-contrib X, --octaves N and
+# --footprint on|off, as `--opt value` or `--opt=value` (platform/qemu-settings.sh splits them,
+# the board checks them). The board has
+# no display: frames leave band by band through semihosting. Both commands run under
+# `-icount shift=0` (one guest instruction = 1 ns of virtual time; the SysTick steps 62.5 ns at
+# the chip's 16 MHz, so a frame's count is exact to within 63 instructions a band, the same on
+# every run) and print `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and
+# the guest's RAM use (`ram: ...`). A frame is byte for byte
+# `build/rt-fixed render --size 128x64 --grid 4 --frame N` (with the same settings). The exit
+# status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
+# With QEMU_PLUGIN=FILE.so,ARGS QEMU loads that TCG plugin (make qemu-profile REAL=m0).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+
+die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
+usage="usage: platform/m0/qemu.sh frames|bench [SETTINGS] [ARGS...] (see the file's header)"
+
+[ $# -ge 1 ] || die "$usage"
+cmd=$1
+shift
+elf=build/m0/intro-fixed.elf
+[ -f "$elf" ] || die "$elf is missing: run make m0 first"
+command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
+timeout_s=${QEMU_TIMEOUT:-600}
+case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+
+# The render settings go to the board first (it checks their values); the rest stay in order.
+. platform/qemu-settings.sh
+qemu_settings "$@"
+set -- "${args[@]+"${args[@]}"}"
+semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
+
+case "$cmd" in
+  frames)
+    [ $# -ge 1 ] || die "frames wants at least one frame number"
+    mkdir -p build/qemu-m0
+    for n in "$@"; do
+      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
+      rm -f "build/qemu-m0/fixed-$(printf '%04d' "$((10#$n))").ppm"
+    done
+    set -- --out build/qemu-m0/fixed "$@"
+    ;;
+  bench)
+    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    ;;
+  *) die "unknown command '$cmd'; $usage" ;;
+esac
+
+plugin=()
+[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
+status=0
+# --foreground: QEMU stays in the terminal's process group; no stdin.
+timeout --foreground -k 10 "$timeout_s" qemu-system-arm -M microbit -kernel "$elf" -display none \
+  -serial stdio -monitor none -icount shift=0,align=off,sleep=off ${plugin[@]+"${plugin[@]}"} \
+  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
+  status=$?
+if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
+  echo "qemu.sh: error: the M0 guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
+  exit 1
+fi
+exit "$status"
