@@ -621,7 +621,7 @@ static inline dir3 d3_cross(dir3 a, dir3 b, real *len)
 
 /* fx_renorm is inlined into its callers on 32-bit ARM (the reflected and refracted directions of
  * trace.c): its three 64-bit arguments would otherwise go through the stack, and the inlined
- * copies measured 0.2% fewer instructions per intro frame under QEMU for about 400 bytes.
+ * copies measured fewer instructions a frame on the board, for a larger image.
  * Elsewhere the compiler decides (the x86 players stay small). */
 #if defined(__arm__)
 #define FX_RENORM_INLINE __attribute__((always_inline))
