@@ -443,8 +443,8 @@ dir3 fx_norm32(int32_t x, int32_t y, int32_t z, real *len) { return fx_norm64(x,
  * plane (a 4096x2 frame reaches 7000) is formed with as many more bits of shift as it needs,
  * so that every term stays below 2^61 and the sums below 2^63. With unit in Q16.16 the offsets
  * are rounded to Q.16 (below 2^29 on any frame) and the sums are Q.32 (below 2^47). On 32-bit
- * ARM with fx_norm64 inlined into it (flatten: about 40 instructions a primary ray fewer under
- * QEMU, for 900 bytes); elsewhere a plain call, which keeps the desktop player small. */
+ * ARM with fx_norm64 inlined into it (flatten: fewer instructions a primary ray on the board, for
+ * a larger image); elsewhere a plain call, which keeps the desktop player small. */
 #if defined(__arm__)
 __attribute__((flatten))
 #endif

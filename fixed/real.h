@@ -23,6 +23,33 @@
  * returns a defined value. With FX_COUNT_EVENTS=1 each such event is counted in
  * fx_event_count[] so that tests can assert none happened; the float build then also counts
  * every NaN or infinity an operation returns (FX_EV_NONFINITE).
+ *
+ * Names: the prefix says the type worked on, the suffixes what the caller promises or gets.
+ * Prefixes:
+ *   r_   real          u_   unit          w_   wide           fx_  the fixed build's helpers
+ *   v3_  vec3          d3_  dir3          c3_  colour (a vec3 in [0, 1161], docs/numerics.md)
+ * Operand suffixes (what the second operand is):
+ *   _u   a unit (r_mul_u: real x unit)     _i   an int (r_muli, u_divi)
+ *   _d   a dir3 (v3_dot_d)                 _w   a wide (r_sqrt_w: the root of a wide)
+ * Promise suffixes (the caller guarantees more, the operation checks less; the event-counting
+ * builds take the checked form, so a broken promise shows there as FX_EV_OVERFLOW):
+ *   _in     the result is in range (docs/numerics.md bounds it): no saturation test
+ *   _c      both operands are colours or weights, in [0, 1161]: r_mul_in without the sign term
+ *   _p      c3_ operations on such non-negative colours (through r_mul_c)
+ *   _pos    both operands positive (r_div_u_pos): no signs, no zero divisor
+ * Shortcut suffixes (the same answer by a cheaper route):
+ *   _k      takes a product the caller has already formed (d3_reflect_k: dn = d . n)
+ *   _near   the input is near a known length (d3_norm_near: |v| near the r of rinv k)
+ *   _fast   the input is near unit length: the correction without its checks (fx_renorm_unit)
+ *   _above, _below   a comparison with a bound without forming the value compared
+ *                    (r_div_u_above: a quotient; d3_below: a . b < 0)
+ *   _from   completes a part prepared once for many calls (v3_dot_d_from)
+ * Other suffixes: _len (d3_norm_len: the length too), _to (writes through a pointer), _at (takes
+ * its vectors by pointer), _pow2 (for a power-of-two modulus), _round (rounded, not truncated),
+ * _q16 / _q30 (a raw Q16.16 or Q2.30 integer in or out), _w32 / _w64 (fx_sat for 32- or 64-bit
+ * machines).
+ * The tracer's own kernels built on these (r_cull, r_sphere_span, r_perp_within, v3_dot_part)
+ * are in src/core/rt_kernels.h.
  */
 #ifndef FIXRAY_REAL_H
 #define FIXRAY_REAL_H
@@ -95,14 +122,12 @@ typedef struct rinv {  /* 1/r prepared for d3_norm_near: m = 2^s / r, and r */
     int32_t s;
     fix16_t r;
 } rinv;
-typedef int32_t rcull; /* a sphere's quick ray rejection as a bound on c . d: r_cull */
 #else
 typedef float real;
 typedef float unit;
 typedef float ustep;
 typedef float wide;
 typedef float rinv;
-typedef float rcull;
 #endif
 
 typedef struct vec3 {

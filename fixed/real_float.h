@@ -233,25 +233,8 @@ static inline wide w_sub(wide a, wide b) { return a - b; }
 
 static inline wide w_len2(vec3 a) { return fl_chk(a.x * a.x + a.y * a.y + a.z * a.z); }
 
-/* A sphere's quick rejection of rays (the fixed build's r_cull): k itself, 0 for none; it
- * rejects when c . d >= 0 or (c . d)^2 < k. */
-static inline rcull r_cull(wide k) { return k > 0 ? k : 0; }
-
-static inline int r_cull_rejects(real cd, rcull c) { return cd >= 0 || w_sq(cd) < c; }
-
 static inline real r_sqrt_w(wide a) { return r_sqrt(a); }
 static inline real r_sqrt_w_in(wide a) { return r_sqrt_w(a); }
-
-/* The sphere test's last step for a shadow segment (the fixed build forms it without the
- * square root): the near hit tca - thc if positive, else tca + thc, in (0, tmax)? */
-static inline int r_sphere_span(wide a, real tca, real tmax)
-{
-    real thc = r_sqrt_w(a);
-    real hit = r_sub(tca, thc);
-    if (hit <= 0)
-        hit = r_add(tca, thc);
-    return hit > 0 && hit < tmax;
-}
 
 static inline real r_hypot(real a, real b) { return fl_chk(sqrtf(a * a + b * b)); }
 
@@ -357,24 +340,4 @@ static inline int d3_refract(dir3 d, dir3 n, real eta, dir3 *out)
 static inline vec3 v3_sub_in(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static inline real v3_dot_d_in(vec3 v, dir3 d) { return v3_dot_d(v, d); }
 static inline vec3 d3_scale_in(dir3 d, real s) { return d3_scale(d, s); }
-/* The sphere test's discriminant step (the fixed build's r_perp_within): the sum of squares
- * compared with r2 (float keeps no component shortcut: a square's rounding could tie r2). */
-static inline int r_perp_within(vec3 l, dir3 d, real tca, real r, wide r2, wide *d2)
-{
-    (void)r;
-    *d2 = w_len2(v3_sub_in(l, d3_scale_in(d, tca)));
-    return *d2 <= r2;
-}
-
-/* The split form of v3_dot_d_in(v3_sub_in(c, l), d): float keeps l and subtracts first. */
-typedef vec3 dotpart;
-static inline dotpart v3_dot_part(vec3 l, dir3 d)
-{
-    (void)d;
-    return l;
-}
-static inline real v3_dot_d_from(vec3 c, dir3 d, dotpart part)
-{
-    return v3_dot_d_in(v3_sub_in(c, part), d);
-}
 #endif

@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "real.h"
+#include "rt_kernels.h"
 
 #if !FX_COUNT_EVENTS
 #error "test_numeric checks the event counters: build it with -DFX_COUNT_EVENTS=1"

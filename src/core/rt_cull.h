@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "real.h"
+#include "rt_kernels.h"
 
 typedef struct rt_scene_cull {
     /* Per light l and object j: the occluders[l] other than j that a shadow ray from a point

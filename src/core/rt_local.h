@@ -172,7 +172,7 @@ static inline dir3 rt_view_ray(const rt_view *v, int x, int y)
                      v->height - 2 * y - 1);
 }
 
-/* A primary hit's local part given (adaptive and probe mode, subsample.c: ss_local): where the
+/* A primary hit's local part given (adaptive and probe mode, subsample_local.c: ss_local): where the
  * point's primary ray meets object `id` in checker cell `cell`, its ambient and light terms are not
  * formed: `col` (in [0, 1]) is taken as its colour there and `lights` as its light states; its
  * secondary rays are traced as usual. */

@@ -126,8 +126,8 @@ int rt_intersect(const rt_object *o, vec3 org, dir3 d, real tmax, real *t)
  * the call and the passing of the ray per object. */
 
 /* The plane test of rt_nearest_set, inlined there (on ARM too: once the tracer's other changes
- * were in, the inlined test measured 0.1% fewer instructions a frame than the out-of-line one,
- * and a smaller image): plane_intersect's result for rt_nearest_set's rays, whose origins are
+ * were in, the inlined test measured fewer instructions a frame than the out-of-line one, and a
+ * smaller image): plane_intersect's result for rt_nearest_set's rays, whose origins are
  * in the scene as the sphere test takes them (|org| <= 23478, docs/numerics.md) and whose tmax
  * is at most R_T_MAX. So |org . n| <= 23478 and, with |offset| <= 4096, |offset - org . n| is
  * below 27575: the numerator is formed without the range checks (v3_dot_d_in, r_add_in, the
@@ -181,8 +181,7 @@ int rt_nearest_set(const rt_scene *s, vec3 org, dir3 d, real tmax, uint32_t cand
 
 /* rt_nearest_from_in's search with one copy of rt_nearest_set's loop for both of its searches
  * (the second, of every candidate, only where the first, of ray_in's, did not find `need`):
- * fewer instructions on x86-64 than calling rt_nearest_from_in (callgrind, 13 intro frames:
- * rt-float 593.5 M against 597.0 M, rt-fixed 776.4 M against 778.8 M). */
+ * fewer instructions on x86-64 than calling rt_nearest_from_in (callgrind; docs/tracer.md). */
 int rt_nearest_from(const rt_scene *s, vec3 org, dir3 d, real tmax, int from, uint32_t cand,
                     real *t)
 {

@@ -7,9 +7,9 @@
  * weights are equal over the corners they do not leave out (1, 2 or 4), and each channel is
  * their mean. In integers, the same in both builds: a byte b as b 257 / 2^16 in Q16.16 (within
  * 2^-16 of b / 255), a sum of 4 bytes times 257 (below 2^19) divided by 4, rounded. No other
- * tone is kept (RT_ALT_NONE): such points are hardly ever the corners of a texture square
- * (intro frames 0..1200 step 100: 3,200 texture squares instead of 3,207 with the other tone
- * interpolated too, for about 330 bytes more of the board's code). Out of line and cold: off
+ * tone is kept (RT_ALT_NONE): such points are hardly ever the corners of a texture square, and
+ * interpolating it too fills hardly more of them, for more of the board's code
+ * (docs/tracer.md). Out of line and cold: off
  * the usual path. */
 __attribute__((cold, noinline)) const rt_local *ss_local(ss_ctx *c, const ss_area *a, int x, int y)
 {
@@ -35,12 +35,11 @@ __attribute__((cold, noinline)) const rt_local *ss_local(ss_ctx *c, const ss_are
 /* The largest side of a square whose split's points take their local parts from its corners
  * (ss_local_ok). A point that takes its local part takes the corners' light states too, so no
  * square inside the split can see a highlight the corners do not: on a top-level square (8) a
- * highlight between its corners on a glossy mirror or glass sphere was lost whole (intro frame
- * 1012: 193 levels off, where the split had found it). At 4 the points are as close to a shaded
- * corner as in the squares adaptive mode leaves unsplit, whose colours are interpolated the
- * same way: frames 787, 1012, 1037 and 1100 then have the worst pixel they had before the local
- * parts (against --mode full --min-contrib 0; over8 the same or one more, PSNR 0.01 to 0.04 dB
- * lower), keeping about 90% of the local points there. */
+ * highlight between its corners on a glossy mirror or glass sphere can be lost whole, where the
+ * split would have found it. At 4 the points are as close to a shaded corner as in the squares
+ * adaptive mode leaves unsplit, whose colours are interpolated the same way, so the worst pixel
+ * against a full render stays what it is without local parts, and most local points are kept
+ * (docs/tracer.md has the figures). */
 #define SS_LOCAL_MAX 4
 
 /* Adaptive and probe mode, a square split for its secondary rays (RT_SPLIT_SECONDARY: one

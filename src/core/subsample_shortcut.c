@@ -299,9 +299,9 @@ static int ss_spread(const rt_color *const k[4], int32_t lim)
  * keep their colour), 0 to split (also when a pixel's ray misses the object). Not on a noise
  * texture (its colour is not the corners' in between: ss_noise's) nor where the view's eye is
  * not the prepared one (ss_hit_at). Not on a sphere either: a sphere's lit and unlit corners
- * are nearly always either side of its terminator, where the light stops facing it (measured
- * over the intro's 13 benchmark frames: 4 of 2,906 squares filled were on spheres, for many
- * tries that failed at their corners' terms). 64 bytes of stack for the lit colours. */
+ * are nearly always either side of its terminator, where the light stops facing it, so nearly
+ * every try there fails at the corners' terms (docs/tracer.md). 64 bytes of stack for the lit
+ * colours. */
 __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const k[4], int x0, int y0,
                                         int w, int h)
 {

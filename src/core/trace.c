@@ -125,8 +125,7 @@ static __attribute__((cold, noinline)) void trace_alt_end(uint8_t *to, const rt_
  * unlit, 1 lit, 2 highlight). Out of line on ARM (RT_OUT_OF_LINE): the caller's loop then keeps
  * less in registers; so in the 64 kB players too (the builds without probe mode), where
  * trace_ray and rt_light_term share the one copy. Elsewhere (x86-64) inlined into both:
- * trace_ray's loop over lights takes fewer instructions so (callgrind, 13 intro frames: float
- * 667.4 M out of line, 654.1 M inlined). */
+ * trace_ray's loop over lights takes fewer instructions so (callgrind; docs/tracer.md). */
 #if defined(__arm__) || !RT_COMPILED_PROBE
 static RT_OUT_OF_LINE uint8_t trace_light(trace_ctx *c, trace_hit *h, int i, rt_color *col)
 #else
@@ -191,8 +190,7 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
                           int from);
 
 /* trace_ray's search of a ray's nearest hit: rt_nearest_from inlined on ARM, called elsewhere
- * (fewer instructions each way: qemu.sh bench fixed 0 1200 100 54.33 M against 54.65 M called;
- * callgrind, 13 intro frames, rt-float 608.8 M against 612.4 M inlined). */
+ * (each way measured fewer instructions there; docs/tracer.md). */
 #if defined(__arm__)
 #define TRACE_NEAREST_FROM rt_nearest_from_in
 #else
@@ -201,8 +199,8 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
 
 /* The reflected and refracted rays of hit h (trace_ray's, at recursion level `level`, whose
  * depth left is above 0, and weight `weight`), added to col. Inlined into trace_ray, also on
- * ARM: with the ray passed in place it measured fewer instructions there than out of line
- * (qemu.sh bench fixed 0 1200 100: -0.27%), and a smaller image. */
+ * ARM: with the ray passed in place it measured fewer instructions there than out of line,
+ * and a smaller image. */
 static inline rt_color trace_secondary(trace_ctx *c, const trace_hit *h, real weight, int level,
                                        real travelled, rt_color col)
 {
