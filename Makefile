@@ -34,7 +34,9 @@
 #   make qemu-m0-frames FRAMES="0 425 875"   the same frames rendered on the M0, 16 KiB of RAM
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
-#   make fuzz [SECONDS=N] fuzz the scene parser, timeline and tracer (libFuzzer), N s per build
+#   make fuzz [SECONDS=N] every libFuzzer target N s each: the scene parser, timeline and tracer
+#                   (both builds), the command line, the image readers, the render settings; then
+#                   the corpus's scenes through release and event-counting rt-fixed (same bytes)
 #   make soak [STEP=N]    every (Nth) frame of the intro, twice, both builds: same pictures, flat memory
 #   make clean      remove build products (keeps the fetched libfixmath source in build/deps)
 #
@@ -131,7 +133,8 @@ define variant
 OBJ_$(1) := $(BUILD)/obj/$(1)
 CORE_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(CORE_SRCS))
 APP_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS))
-OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/topt.c src/tools/edges.c platform/null.c tests/fuzz_scene.c)
+OTHER_OBJS_$(1) := $$(patsubst %.c,$(BUILD)/obj/$(1)/%.o,$(APP_SRCS) $(TEST_SRCS) src/scene/scn_cwrite.c src/tools/cmp.c src/tools/scenec.c src/tools/topt.c src/tools/edges.c platform/null.c tests/fuzz_scene.c \
+                   tests/fuzz_cli.c tests/fuzz_image.c tests/fuzz_knobs.c)
 FIXMATH_LIB_$(1) := $$(if $$(filter 1,$(2)),$(BUILD)/obj/$(1)/libfixmath.a)
 
 $$(CORE_OBJS_$(1)): $(BUILD)/obj/$(1)/%.o: %.c | $(FIXMATH_STAMP)
@@ -458,7 +461,21 @@ $(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)
 endef
 $(eval $(call fuzz_prog,fuzz-float))
 $(eval $(call fuzz_prog,fuzz-fixed))
-FUZZ_PROGS := $(BUILD)/fuzz-float/fuzz_scene $(BUILD)/fuzz-fixed/fuzz_scene
+# The other inputs users give, which take no real arithmetic (one build): the command line
+# through cli.c's option table, the image readers (image.c), the settings' parser (knobs.c).
+FZ := $(BUILD)/obj/fuzz-fixed
+$(BUILD)/fuzz/fuzz_cli: $(FZ)/tests/fuzz_cli.o $(FZ)/src/app/cli.o $(FZ)/src/scene/knobs.o $(FZ)/fixed/fx.o $(FZ)/src/app/image.o \
+                        $(FZ)/src/app/outpath.o $(FIXMATH_LIB_fuzz-fixed)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $^ -lpng -lm
+$(BUILD)/fuzz/fuzz_image: $(FZ)/tests/fuzz_image.o $(FZ)/src/app/image.o
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $^ -lpng
+$(BUILD)/fuzz/fuzz_knobs: $(FZ)/tests/fuzz_knobs.o $(FZ)/src/scene/knobs.o $(FZ)/fixed/fx.o $(FIXMATH_LIB_fuzz-fixed)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $@ $^ -lm
+FUZZ_PROGS := $(BUILD)/fuzz-float/fuzz_scene $(BUILD)/fuzz-fixed/fuzz_scene \
+              $(addprefix $(BUILD)/fuzz/,fuzz_cli fuzz_image fuzz_knobs)
 fuzz-progs: $(FUZZ_PROGS)
 
 
@@ -488,7 +505,7 @@ test: setup-test
 
 SECONDS ?= 60
 fuzz: setup-test
-	@$(MAKE) --no-print-directory fuzz-progs
+	@$(MAKE) --no-print-directory fuzz-progs $(BUILD)/rt-fixed $(BUILD)/san-fixed/rt
 	@tests/fuzz.sh $(SECONDS)
 
 STEP ?= 1

@@ -270,3 +270,29 @@ if [ -z "$bad" ]; then
 else
   fail "faults: leak check of the sanitized player:$bad"
 fi
+
+# ---- the differential oracle (make fuzz runs it on the scene fuzzer's corpora) -----------------------
+# The scene fuzzer's seeds, the kept inputs among them (tests/fuzz.sh --smoke, earlier in make
+# test, gathers them): release rt-fixed and the event-counting build give the same bytes.
+if out=$(tests/fuzz_oracle.sh build/fuzz/seeds 2>&1); then
+  pass "$out"
+else
+  fail "$(tr '\n' ' ' <<<"$out")"
+fi
+# The new fuzzers' findings, through the programs: a control character in an option makes no
+# second line, and "P6" without a blank after it is not an image.
+d=$FW/found && mkdir -p "$d"
+printf 'P62 1\n255\n\nabcdef' >"$d/p62.ppm"
+err1=$($B/rt-fixed render $'--fram\nes' 2>&1 >/dev/null)
+st1=$?
+err2=$($B/rt-scenec $'--na\tme' 2>&1 >/dev/null)
+st2=$?
+err3=$($B/rt-cmp "$d/p62.ppm" "$d/p62.ppm" 2>&1 >/dev/null)
+st3=$?
+if [ $st1 -eq 2 ] && [ "$(wc -l <<<"$err1")" -eq 1 ] && [ "$err1" = "rt-fixed: --fram?es: unknown option (see rt-fixed --help)" ] &&
+   [ $st2 -eq 2 ] && [ "$(wc -l <<<"$err2")" -eq 1 ] && grep -q '^rt-scenec: --na?me: unknown option' <<<"$err2" &&
+   [ $st3 -eq 2 ] && grep -q 'p62.ppm: not a PNG or binary PPM (P6) image' <<<"$err3"; then
+  pass "faults: an option holding a newline or a tab gets one line ($err1); 'P62 1 255' is not a PPM"
+else
+  fail "faults: fuzzers' findings: exit $st1 '$err1'; exit $st2 '$err2'; exit $st3 '$err3'"
+fi

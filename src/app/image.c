@@ -151,7 +151,8 @@ int img_load(const char *path, img_rgb *out, char *err, size_t errlen)
         fclose(f);
         return img_load_png(path, out, err, errlen);
     }
-    if (got >= 3 && magic[0] == 'P' && magic[1] == '6') {
+    /* "P6", then a blank or a comment, as the format has it */
+    if (got >= 3 && magic[0] == 'P' && magic[1] == '6' && strchr(" \t\n\r#", magic[2])) {
         rewind(f);
         (void)fgetc(f);
         (void)fgetc(f);
