@@ -198,7 +198,7 @@ $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
 define san_progs
 $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
+	$$(CC) $(SAN) -o $$@ $$^ $$(LIBS)
 
 $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
@@ -276,7 +276,7 @@ BOARD_MAX_OBJECTS := 16
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
 # --use-blx: calls between ARM and Thumb code are single BLX instructions (the ARM926 has them)
 # instead of the linker's interworking veneers (8 or 12 B each, two or three instructions more a
-# call): 296 B less in the fixed image (64,316 -> 64,020 B, clean builds), frames as before.
+# call): about 300 B less in the fixed image, frames as before.
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,--use-blx \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
@@ -327,12 +327,9 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # frame's count takes in part of each call). Within the files at -O2, FX_BOARD_THUMB (fixed/real.h)
 # makes Thumb at -Os the functions that run outside the counted frames or only in non-default
 # modes: u_sincos_deg, fx_norm32, rt_render_band_rows, rt_render_band_count, rt_render_work_size,
-# and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of. With
-# arm.c they took the image from 65,464 to 64,516 B (+4 instructions in a mean frame, qemu.sh bench
-# fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,316 B, --use-blx (ARM_LDFLAGS) to 64,020
-# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,940 B (clean builds of each
-# step). tests/scene_programs.sh
-# builds its ARM images with the same flags (make arm-file-flags).
+# and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of (the
+# sizes each step saved: docs/arm.md). tests/scene_programs.sh builds its ARM images with the same
+# flags (make arm-file-flags).
 ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c \
                  platform/arm/arm.c src/core/camera.c
 ARM_COLD_CFLAGS := -Os -mthumb
