@@ -4,7 +4,8 @@
 #                   the intro players
 #   make run        set up if needed, play the intro in a window (without a display: render it
 #                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
-#   make test       set up if needed, build everything and run the test suite
+#   make test       set up if needed, build everything and run the test suite (tests/run.sh)
+#   make check      the fast inner loop: the unit tests and a few host frames (tests/run.sh unit frames)
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
 #                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
@@ -105,7 +106,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
+.PHONY: all run test check bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -382,7 +383,7 @@ $(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
 
 m3: setup-arm
 	@$(MAKE) -s --no-print-directory $(M3_ELF)
-	@tests/m3_check.sh --print
+	@tests/m3.sh --print
 
 qemu-m3: setup-gui
 	@$(MAKE) -s --no-print-directory $(M3_ELF)
@@ -428,6 +429,12 @@ run: setup
 test: setup-test
 	@$(MAKE) --no-print-directory all san arm m3 fuzz-progs
 	@tests/run.sh
+
+# The fast inner loop: the unit tests of both builds under the sanitizers and the demo scene's
+# frames (fixed vs float, determinism, a sanitized render): two parts of make test's suite.
+check: setup
+	@$(MAKE) --no-print-directory all san
+	@tests/run.sh unit frames
 
 SECONDS ?= 60
 fuzz: setup-test
@@ -487,7 +494,7 @@ SETTINGS ?=
 
 arm: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(PROFILE_PLUGIN)
-	@tests/arm_check.sh --print
+	@tests/arm.sh --print
 
 qemu: setup-gui
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
