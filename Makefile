@@ -4,7 +4,8 @@
 #                   the intro players
 #   make run        set up if needed, play the intro in a window (without a display: render it
 #                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
-#   make test       set up if needed, build everything and run the test suite
+#   make test       set up if needed, build everything and run the test suite (tests/run.sh)
+#   make check      the fast inner loop: the unit tests and a few host frames (tests/run.sh unit frames)
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
 #                   the Cortex-M3 and M0 under QEMU (instructions per frame, fps at 200, 50, 16 and
@@ -112,7 +113,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
+.PHONY: all run test check bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames m0 qemu-m0-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -206,7 +207,7 @@ $(GEN)/scene_intro.c: scenes/intro.scene $(BUILD)/rt-scenec
 define san_progs
 $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $(SAN) -o $$@ $$^ $(LIBS)
+	$$(CC) $(SAN) -o $$@ $$^ $$(LIBS)
 
 $(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
@@ -284,7 +285,7 @@ BOARD_MAX_OBJECTS := 16
 ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
 # --use-blx: calls between ARM and Thumb code are single BLX instructions (the ARM926 has them)
 # instead of the linker's interworking veneers (8 or 12 B each, two or three instructions more a
-# call): 296 B less in the fixed image (64,316 -> 64,020 B, clean builds), frames as before.
+# call): about 300 B less in the fixed image, frames as before.
 ARM_LDFLAGS := $(ARM_ARCH) -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,--use-blx \
                -Wl,-z,noexecstack -Wl,--no-warn-rwx-segments
 ARM_SRCS := $(CORE_SRCS) src/app/intro.c platform/board.c platform/arm/arm.c $(GEN)/scene_intro.c
@@ -335,12 +336,9 @@ $(eval $(call arm_variant,fixed16,1,$(BUILD)/obj/arm-fixed/libfixmath.a,$(FIXED1
 # frame's count takes in part of each call). Within the files at -O2, FX_BOARD_THUMB (fixed/real.h)
 # makes Thumb at -Os the functions that run outside the counted frames or only in non-default
 # modes: u_sincos_deg, fx_norm32, rt_render_band_rows, rt_render_band_count, rt_render_work_size,
-# and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of. With
-# arm.c they took the image from 65,464 to 64,516 B (+4 instructions in a mean frame, qemu.sh bench
-# fixed 0 1200 100; probe mode +0.09 %), camera.c to 64,316 B, --use-blx (ARM_LDFLAGS) to 64,020
-# B, fx_norm32, rt_render_band_count and rt_probe_masks_of to 63,940 B (clean builds of each
-# step). tests/scene_programs.sh
-# builds its ARM images with the same flags (make arm-file-flags).
+# and probe mode's rt_trace_pixel_from, trace_first, ss_probe_new and rt_probe_masks_of (the
+# sizes each step saved: docs/arm.md). tests/scene_programs.sh builds its ARM images with the same
+# flags (make arm-file-flags).
 ARM_COLD_SRCS := src/app/intro.c src/scene/knobs.c platform/board.c src/scene/scn.c \
                  platform/arm/arm.c src/core/camera.c
 ARM_COLD_CFLAGS := -Os -mthumb
@@ -402,7 +400,7 @@ $(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
 
 m3: setup-arm
 	@$(MAKE) -s --no-print-directory $(M3_ELF)
-	@tests/m3_check.sh --print
+	@tests/m3.sh --print
 
 qemu-m3: setup-gui
 	@$(MAKE) -s --no-print-directory $(M3_ELF)
@@ -503,6 +501,12 @@ test: setup-test
 	@$(MAKE) --no-print-directory all san arm m3 m0 fuzz-progs
 	@tests/run.sh
 
+# The fast inner loop: the unit tests of both builds under the sanitizers and the demo scene's
+# frames (fixed vs float, determinism, a sanitized render): two parts of make test's suite.
+check: setup
+	@$(MAKE) --no-print-directory all san
+	@tests/run.sh unit frames
+
 SECONDS ?= 60
 fuzz: setup-test
 	@$(MAKE) --no-print-directory fuzz-progs $(BUILD)/rt-fixed $(BUILD)/san-fixed/rt
@@ -561,7 +565,7 @@ SETTINGS ?=
 
 arm: setup-arm
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(ARM_ELF_FIXED16) $(PROFILE_PLUGIN)
-	@tests/arm_check.sh --print
+	@tests/arm.sh --print
 
 qemu: setup-gui
 	@$(MAKE) -s --no-print-directory $(ARM_ELFS)

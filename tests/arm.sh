@@ -1,25 +1,79 @@
 #!/usr/bin/env bash
-# arm.sh: the ARM926 images under QEMU against the host builds: bit-identical fixed frames, close soft-float frames, repeatable instruction counts, RAM, display.
+# arm.sh: the ARM926 images: static budgets (no floating point, 64 KiB of code, RAM) and runs under QEMU against the host builds (bit-identical fixed frames, close soft-float frames, repeatable instruction counts, RAM, display).
 #
-# Expects make all arm. Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them) and exits 1
-# if any check fails. Frames are those of platform/arm/qemu.sh frames, in build/qemu/.
+# Usage: tests/arm.sh [--print | --static]
+#   Expects make all arm. Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them) and exits
+#   1 if any check fails. Frames are those of platform/arm/qemu.sh frames, in build/qemu/.
+#   --static: only the budgets that need no run; --print: only the images' sizes (make arm).
+# The budgets: build/arm/intro-fixed.elf and intro-fixed16.elf have no VFP/coprocessor
+# instruction and no soft-float helper or libm function (the scans do find them in intro-float.elf
+# and in a small object assembled here); the fixed image links only allowed library code, has at
+# most 64 KiB of code + read-only data + initialised data (the original's limit) and at most
+# 32 KiB of .data + .bss + reserved stack (the measured stack peak is checked from a run).
 set -u
 cd "$(dirname "$0")/.."
+. tests/lib.sh
+. tests/board.sh
 
-B=build
+FIXED=$B/arm/intro-fixed.elf
+FLOAT=$B/arm/intro-float.elf
+FIXED16=$B/arm/intro-fixed16.elf
+CODE_LIMIT=65536
+RAM_LIMIT=32768
+
+if [ "${1:-}" = --print ]; then
+  for f in "$FIXED" "$FIXED16" "$FLOAT"; do
+    [ -f "$f" ] || continue
+    # the 64 KiB limit is the fixed images' (the soft-float image is the comparison build)
+    limit="limit $CODE_LIMIT" ram_limit="limit $RAM_LIMIT"
+    [ "$f" = "$FLOAT" ] && limit="comparison build, no limit" && ram_limit="no limit"
+    printf '%s: code+rodata+data %d B (%s), data %d + bss %d + stack reserve %d = %d B RAM (%s), framebuffers %d B\n' \
+      "$f" "$(board_code_bytes "$f")" "$limit" "$(board_section "$f" .data)" "$(board_section "$f" .bss)" \
+      "$(board_section "$f" .stack)" "$(board_ram_bytes "$f")" "$ram_limit" "$(board_section "$f" .fb)"
+  done
+  exit 0
+fi
+
+# ---- the budgets that need no run ----------------------------------------------------------------
+board_image "$FIXED"
+board_image "$FLOAT"
+board_no_float "arm: fixed image" arm "$FIXED"
+if [ -f "$FIXED16" ]; then
+  n=$(board_fp_instructions arm "$FIXED16")
+  syms=$(board_fp_symbols "$FIXED16")
+  if [ "$n" -eq 0 ] && [ -z "$syms" ]; then
+    pass "arm: fixed16 image has no floating-point instruction, soft-float helper or libm function (code+rodata+data $(board_code_bytes "$FIXED16") B)"
+  else
+    fail "arm: fixed16 image: $n floating-point/coprocessor instructions, functions: $(tr '\n' ' ' <<<"$syms")"
+  fi
+else
+  fail "arm: $FIXED16 is missing (make arm)"
+fi
+# the switch-table helpers of the Thumb code (Makefile: ARM_COLD_SRCS) besides the common members
+ALLOWED=$(board_allowed 'thumb1_case_[su]?[qh]i')
+board_only_allowed "arm: fixed image" "$FIXED" "$ALLOWED" "libfixmath, memcpy/memset/memcmp, integer division, Thumb switch tables"
+# Positive controls: the float image is full of soft-float helpers and libm, and the instruction
+# scan finds VFP/coprocessor instructions, conditional ones too, in an object that has some.
+others=$(board_members "$FLOAT" | grep -Ev "$ALLOWED" | wc -l)
+[ "$others" -ge 5 ] && pass "arm: positive control: the float image links $others library members outside the allow-list" ||
+  fail "arm: positive control: the float image links only $others library members outside the allow-list"
+syms=$(board_fp_symbols "$FLOAT" | wc -l)
+[ "$syms" -ge 5 ] && pass "arm: positive control: the scan finds $syms soft-float/libm functions in the float image" ||
+  fail "arm: positive control: the scan finds only $syms floating-point functions in the float image"
+ctl=$B/arm/vfp-control.o
+printf '\t.arm\n\t.fpu vfp\n\tvadd.f32 s0, s0, s1\n\tvmul.f64 d0, d1, d2\n\tmrc p15, 0, r0, c0, c0, 0\n\tvaddeq.f32 s0, s0, s1\n\tmrceq p15, 0, r0, c0, c0, 0\n\tldceq p1, c0, [r0]\n\tcdpne p10, 0, c0, c1, c2, 0\n\tsvc 0x123456\n\tadd r0, r0, r1\n' |
+  arm-none-eabi-as -mcpu=arm926ej-s -o "$ctl" -
+board_scan_control arm arm "$ctl" "a test object (conditional ones too), and not its svc and add"
+board_within "arm: fixed image" code+rodata+data "$(board_code_bytes "$FIXED")" "$CODE_LIMIT"
+board_within "arm: fixed image" "data+bss+stack reserve (framebuffers apart)" "$(board_ram_bytes "$FIXED")" "$RAM_LIMIT"
+[ "${1:-}" = --static ] && { lib_status; exit; }
+
+# ---- runs under QEMU ---------------------------------------------------------------------------------
 T=$B/test/arm
 rm -rf "$T" && mkdir -p "$T"
-RAM_LIMIT=32768
 # Intro frames across its five parts (25 fps): t = 0, 8, 17, 25, 35, 44 and 48 s.
 FRAMES=(0 200 425 625 875 1100 1200)
-status=0
-pass() { echo "ok   $*"; }
-fail() { echo "FAIL $*"; status=1; }
-
 ppm() { printf '%s/qemu/%s-%04d.ppm' "$B" "$1" "$2"; }
-
-# The budgets that need no run.
-tests/arm_check.sh || status=1
 
 for real in fixed float; do
   for n in "${FRAMES[@]}"; do
@@ -29,27 +83,8 @@ for real in fixed float; do
 done
 
 # Fixed: two runs; the frames equal the host's byte for byte, the counts equal each other.
-for run in 1 2; do
-  if platform/arm/qemu.sh frames fixed "${FRAMES[@]}" >"$T/fixed-$run.log" 2>&1; then
-    pass "arm: qemu-frames fixed, run $run ($(grep -c '^frame=' "$T/fixed-$run.log") frames, mean $(sed -n 's/.* mean=//p' "$T/fixed-$run.log") instructions)"
-  else
-    fail "arm: qemu-frames fixed, run $run: $(tail -2 "$T/fixed-$run.log" | tr '\n' ' ')"
-  fi
-  for n in "${FRAMES[@]}"; do
-    cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" || fail "arm: fixed frame $n (run $run) differs from build/rt-fixed render --size 320x240 --frame $n"
-  done
-done
-same=0
-for n in "${FRAMES[@]}"; do
-  cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" && same=$((same + 1))
-done
-[ "$same" -eq ${#FRAMES[@]} ] && pass "arm: fixed frames ${FRAMES[*]} bit-identical to the host's rt-fixed, in both runs"
-if [ "$(grep -c '^frame=' "$T/fixed-1.log")" -eq ${#FRAMES[@]} ] &&
-   diff <(grep '^frame=' "$T/fixed-1.log") <(grep '^frame=' "$T/fixed-2.log") >/dev/null; then
-  pass "arm: two runs give identical instruction counts ($(grep '^frame=' "$T/fixed-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
-else
-  fail "arm: instruction counts differ between two runs"
-fi
+ppm_fixed() { ppm fixed "$1"; }
+board_two_runs arm fixed ppm_fixed host-fixed "the host's rt-fixed render --size 320x240" platform/arm/qemu.sh frames fixed
 
 # The profiler (make qemu-profile): the TCG plugin's count inside frames 425 and 875 equals the
 # board's own icount figures for them (from the run above) to within 200 instructions a frame,
@@ -119,14 +154,7 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
 done
 # A setting the board cannot take gets one line and status 2, before any frame.
 for S in "--grid 16" "--octaves 9" "--threshold=2" "--depth 2 --depth=3" "--footprint 1"; do
-  # shellcheck disable=SC2086
-  out=$(platform/arm/qemu.sh bench fixed $S 0 0 1 2>&1)
-  st=$?
-  if [ $st -eq 2 ] && grep -q "^intro: error: ${S%%[ =]*}: " <<<"$out" && ! grep -q '^frame=' <<<"$out"; then
-    pass "arm: bench $S refused on the board: $(grep '^intro: error' <<<"$out")"
-  else
-    fail "arm: bench $S: status $st: $(tr '\n' ' ' <<<"$out")"
-  fi
+  board_refused arm "$S" platform/arm/qemu.sh bench fixed
 done
 
 # Soft-float: the same sources in float, against the host's float build.
@@ -137,7 +165,7 @@ else
 fi
 for n in "${FRAMES[@]}"; do
   line=$($B/rt-cmp "$(ppm float "$n")" "$T/host-float-$n.ppm" 2>&1)
-  psnr=$(sed -n 's/.*psnr_db=\([^ ]*\).*/\1/p' <<<"$line")
+  psnr=$(field psnr_db "$line")
   if [ -n "$psnr" ] && { [ "$psnr" = inf ] || awk -v p="$psnr" 'BEGIN { exit !(p >= 40) }'; }; then
     pass "arm: soft-float frame $n vs host float: $line"
   else
@@ -145,38 +173,13 @@ for n in "${FRAMES[@]}"; do
   fi
 done
 
-# RAM: .data + .bss + the deepest stack use, over a stretch of the whole intro.
-if platform/arm/qemu.sh bench fixed 0 1200 50 >"$T/bench.log" 2>&1; then
-  ram=$(sed -n 's/^ram: .* total=\([0-9]*\) bytes$/\1/p' "$T/bench.log")
-  if [ -n "$ram" ] && [ "$ram" -le "$RAM_LIMIT" ]; then
-    pass "arm: RAM besides the framebuffers, 25 intro frames: $(grep '^ram:' "$T/bench.log" | sed 's/^ram: //') <= $RAM_LIMIT"
-  else
-    fail "arm: RAM: $(grep '^ram:' "$T/bench.log") (limit $RAM_LIMIT)"
-  fi
-else
-  fail "arm: bench fixed 0 1200 50: $(tail -2 "$T/bench.log" | tr '\n' ' ')"
-fi
+# RAM besides the framebuffers: .data + .bss + the deepest stack use, over a stretch of the whole intro.
+board_ram arm "$RAM_LIMIT" "" platform/arm/qemu.sh bench fixed 0 1200 50
 
 # A CPU exception ends the run through the vectors with status 3 and a line naming it, instead
 # of restarting the program (tests/arm_fault.c on the same start-up code and backend).
-AO=$B/obj/arm-fixed
-ARM="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
-if arm-none-eabi-gcc -std=c11 -O2 $ARM -ffreestanding -Iplatform -c tests/arm_fault.c -o "$T/arm_fault.o" &&
-   arm-none-eabi-gcc $ARM -nostartfiles -T platform/arm/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-     -Wl,--no-warn-rwx-segments -o "$T/arm_fault.elf" "$T/arm_fault.o" "$AO/start.o" "$AO/platform/board.o" "$AO/platform/arm/arm.o" -lc -lgcc; then
-  timeout --foreground -k 5 30 qemu-system-arm -M versatilepb -m 2 -display none -serial stdio -monitor none \
-    -audiodev none,id=snd0 -global pl041.audiodev=snd0 -semihosting-config enable=on,target=native,arg=fault \
-    -kernel "$T/arm_fault.elf" </dev/null >"$T/fault.log" 2>&1
-  st=$?
-  if [ $st -eq 3 ] && grep -q '^error: CPU exception: undefined instruction' "$T/fault.log" &&
-     [ "$(grep -c 'executing an undefined' "$T/fault.log")" -eq 1 ]; then
-    pass "arm: an undefined instruction ends the run with status 3: $(grep '^error' "$T/fault.log")"
-  else
-    fail "arm: undefined instruction: status $st, $(tr '\n' ' ' <"$T/fault.log" | cut -c1-200)"
-  fi
-else
-  fail "arm: could not build tests/arm_fault.c"
-fi
+board_fault arm "$T" "-mcpu=arm926ej-s -marm -mfloat-abi=soft" platform/arm/link.ld "$B/obj/arm-fixed" platform/arm/arm.o \
+  '^error: CPU exception: undefined instruction' -M versatilepb -m 2 -audiodev none,id=snd0 -global pl041.audiodev=snd0
 
 # The display: the PL110 shows a frame exactly as rendered (QEMU's screendump through the monitor).
 n=875
@@ -195,4 +198,4 @@ if [ -f "$T/screen.ppm" ] && cmp -s "$T/screen.ppm" "$T/host-fixed-$n.ppm"; then
 else
   fail "arm: screendump of frame $n on the PL110: $($B/rt-cmp "$T/screen.ppm" "$T/host-fixed-$n.ppm" 2>&1)"
 fi
-exit $status
+lib_status

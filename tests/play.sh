@@ -5,13 +5,10 @@
 # check fails.
 set -u
 cd "$(dirname "$0")/.."
+. tests/lib.sh
 
-B=build
 T=$B/test/play
 rm -rf "$T" && mkdir -p "$T"
-status=0
-pass() { echo "ok   $*"; }
-fail() { echo "FAIL $*"; status=1; }
 SIZE_LIMIT=65536
 
 # An X server of our own for the window (Xvfb, through xvfb-run).
@@ -151,4 +148,4 @@ for real in fixed float; do
   [ "$size" -le $SIZE_LIMIT ] && pass "player build/intro-$real stripped: $size bytes <= $SIZE_LIMIT" ||
     fail "player build/intro-$real stripped: $size bytes > $SIZE_LIMIT"
 done
-exit $status
+lib_status

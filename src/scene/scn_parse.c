@@ -24,7 +24,7 @@ typedef struct ps_tok {
     int len;
 } ps_tok;
 
-#define PS_NGLOBALS 5 /* statements of the whole scene (ps_globals) */
+#define PS_MAX_PROPS 32 /* rows of ps_props: a bit each in a statement's `seen` */
 
 typedef struct ps_state {
     const char *path;
@@ -36,7 +36,7 @@ typedef struct ps_state {
     const char *p;  /* cursor in the current line */
     const char *le; /* end of its content (before a comment) */
     int have_camera;
-    int global_line[PS_NGLOBALS]; /* of each of ps_globals' statements, 0 before it */
+    int global_line[PS_MAX_PROPS]; /* of each scene-wide statement, by its row of ps_props */
     int camera_line;
     int object_line[RT_MAX_OBJECTS], light_line[RT_MAX_LIGHTS], material_line[RT_MAX_MATERIALS];
     int track_line[SCN_MAX_TRACKS], track_col[SCN_MAX_TRACKS]; /* of the latest key */
@@ -264,74 +264,6 @@ static int ps_new_name(ps_state *ps, ps_tok kw, ps_tok *t, char *dst)
     return 0;
 }
 
-static int ps_camera(ps_state *ps, ps_tok kw)
-{
-    scn_desc *d = &ps->f->desc;
-    if (ps->have_camera)
-        return PS_FAIL(ps, kw.s, "a second camera (the first is at line %d)", ps->camera_line);
-    ps->have_camera = 1;
-    ps->camera_line = ps->line;
-    static const char expected[] = "eye, at, up, fov";
-    unsigned seen = 0;
-    ps_tok t, prev = {0};
-    int prev_arity = 0;
-    while (ps_next(ps, &t)) {
-        int param = ps_is(t, "eye") ? SCN_P_EYE
-            : ps_is(t, "at")        ? SCN_P_AT
-            : ps_is(t, "up")        ? SCN_P_UP
-            : ps_is(t, "fov")       ? SCN_P_FOV
-                                    : -1;
-        if (param < 0)
-            return ps_bad_property(ps, t, "the camera", prev, prev_arity, expected);
-        if (ps_once(ps, t, &seen, 1u << param) != 0)
-            return -1;
-        int32_t *dst = param == SCN_P_EYE ? d->eye
-            : param == SCN_P_AT           ? d->at
-            : param == SCN_P_UP           ? d->up
-                                          : &d->fov;
-        if (ps_values(ps, t, param, dst) != 0)
-            return -1;
-        prev = t;
-        prev_arity = scn_params[param].arity;
-    }
-    if (!(seen & (1u << SCN_P_EYE)) || !(seen & (1u << SCN_P_AT)))
-        return PS_FAIL(ps, kw.s, "the camera needs both 'eye' and 'at'");
-    if (!memcmp(d->eye, d->at, sizeof d->eye))
-        return PS_FAIL(ps, kw.s, "the camera's 'eye' and 'at' are the same point");
-    return 0;
-}
-
-static int ps_light(ps_state *ps, ps_tok kw)
-{
-    scn_desc *d = &ps->f->desc;
-    if (d->nlights >= RT_MAX_LIGHTS)
-        return PS_FAIL(ps, kw.s, "more than %d lights", RT_MAX_LIGHTS);
-    ps_tok name;
-    if (ps_new_name(ps, kw, &name, ps->f->light_names[d->nlights]) != 0)
-        return -1;
-    scn_light *l = &ps->f->lights[d->nlights];
-    static const char expected[] = "pos, color";
-    unsigned seen = 0;
-    ps_tok t, prev = {0};
-    int prev_arity = 0;
-    while (ps_next(ps, &t)) {
-        int param = ps_is(t, "pos") ? SCN_P_LIGHT_POS : ps_is(t, "color") ? SCN_P_LIGHT_COLOR : -1;
-        if (param < 0)
-            return ps_bad_property(ps, t, "a light", prev, prev_arity, expected);
-        if (ps_once(ps, t, &seen, 1u << param) != 0 ||
-            ps_values(ps, t, param, param == SCN_P_LIGHT_POS ? l->pos : l->color) != 0)
-            return -1;
-        prev = t;
-        prev_arity = 3;
-    }
-    if (!(seen & (1u << SCN_P_LIGHT_POS)))
-        return PS_FAIL(ps, name.s, "light '%.*s' has no 'pos'", name.len, name.s);
-    if (!(seen & (1u << SCN_P_LIGHT_COLOR)))
-        return PS_FAIL(ps, name.s, "light '%.*s' has no 'color'", name.len, name.s);
-    ps->light_line[d->nlights++] = ps->line;
-    return 0;
-}
-
 static const char *const ps_textures[RT_TEX_COUNT] = {"none", "checker", "marble", "wood", "noise"};
 static const char *const ps_palettes[RT_PAL_COUNT] = {"marble", "wood", "lava", "sky"};
 
@@ -341,6 +273,256 @@ static int ps_word(ps_tok t, const char *const *words, int n)
         if (ps_is(t, words[i]))
             return i;
     return -1;
+}
+
+/* words[0 .. n-1] as "a, b, c" (last_sep ", ") or "a, b or c" (last_sep " or ") into buf. */
+static void ps_join(char *buf, size_t size, const char *const *words, int n, const char *last_sep)
+{
+    size_t len = 0;
+    buf[0] = 0;
+    for (int i = 0; i < n && len < size; i++) {
+        const char *sep = i == 0 ? "" : i < n - 1 ? ", " : last_sep;
+        len += (size_t)snprintf(buf + len, size - len, "%s%s", sep, words[i]);
+    }
+}
+
+/* The statements that have properties. Scene-wide statements (duration, background, ...) are
+ * the properties of PS_ST_SCENE, written without a statement word. */
+enum ps_stmt { PS_ST_SCENE, PS_ST_CAMERA, PS_ST_LIGHT, PS_ST_MATERIAL, PS_ST_SPHERE, PS_ST_PLANE };
+static const char *const ps_stmt_word[] = {"scene",    "camera", "light",
+                                           "material", "sphere", "plane"};
+/* as unknown properties name them: "unknown property 'x' of a light" */
+static const char *const ps_stmt_what[] = {"the scene",  "the camera", "a light",
+                                           "a material", "a sphere",   "a plane"};
+#define PS_IN(stmt) (1u << (stmt))
+#define PS_IN_OBJECT (PS_IN(PS_ST_SPHERE) | PS_IN(PS_ST_PLANE))
+
+/* What a property's value is, and how it is read. */
+enum ps_kind {
+    PS_V_NUMBERS,  /* the numbers of scn_params[param], range-checked (ps_values) */
+    PS_V_INT,      /* a whole number in lo .. hi */
+    PS_V_TIME,     /* seconds, stored as milliseconds */
+    PS_V_WORD,     /* one of words[0 .. nwords-1], stored as its index */
+    PS_V_MATERIAL, /* the name of a material defined before, stored as its index */
+};
+
+/* One property of one or more statements: its name, its value, and where the value goes in the
+ * statement's record (scn_desc for the scene and the camera, scn_light, scn_material,
+ * scn_object). A statement's properties are listed in its rows' order in error messages. */
+typedef struct ps_prop {
+    const char *name;
+    uint8_t stmts;            /* PS_IN() of the statements that take it */
+    uint8_t kind;             /* enum ps_kind */
+    uint8_t required;         /* the statement must give it */
+    uint8_t param;            /* PS_V_NUMBERS: enum scn_param */
+    uint16_t at;              /* offset of the field in the record */
+    uint8_t size;             /* its size in bytes: 1, 2 or 4 (other kinds than PS_V_NUMBERS) */
+    int32_t lo, hi;           /* PS_V_INT */
+    const char *const *words; /* PS_V_WORD */
+    uint8_t nwords;
+} ps_prop;
+
+/* offset and size of a field of a statement's record */
+#define PS_AT(type, field) offsetof(type, field), sizeof(((type *)0)->field)
+#define PS_OPTIONAL 0
+#define PS_REQUIRED 1
+/* the value's limits: none (PS_V_NUMBERS take scn_params'), lo .. hi, a list of words */
+#define PS_NOTHING 0, 0, NULL, 0
+#define PS_RANGE(lo, hi) lo, hi, NULL, 0
+#define PS_LIST(words, n) 0, 0, words, n
+
+static const ps_prop ps_props[] = {
+    {"duration", PS_IN(PS_ST_SCENE), PS_V_TIME, PS_OPTIONAL, 0, PS_AT(scn_desc, duration_ms),
+     PS_NOTHING},
+    {"fps", PS_IN(PS_ST_SCENE), PS_V_INT, PS_OPTIONAL, 0, PS_AT(scn_desc, fps),
+     PS_RANGE(1, SCN_MAX_FPS)},
+    {"depth", PS_IN(PS_ST_SCENE), PS_V_INT, PS_OPTIONAL, 0, PS_AT(scn_desc, depth),
+     PS_RANGE(0, RT_MAX_DEPTH)},
+    {"background", PS_IN(PS_ST_SCENE), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_BACKGROUND,
+     PS_AT(scn_desc, background), PS_NOTHING},
+    {"ambient", PS_IN(PS_ST_SCENE), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_AMBIENT,
+     PS_AT(scn_desc, ambient), PS_NOTHING},
+
+    {"eye", PS_IN(PS_ST_CAMERA), PS_V_NUMBERS, PS_REQUIRED, SCN_P_EYE, PS_AT(scn_desc, eye),
+     PS_NOTHING},
+    {"at", PS_IN(PS_ST_CAMERA), PS_V_NUMBERS, PS_REQUIRED, SCN_P_AT, PS_AT(scn_desc, at),
+     PS_NOTHING},
+    {"up", PS_IN(PS_ST_CAMERA), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_UP, PS_AT(scn_desc, up),
+     PS_NOTHING},
+    {"fov", PS_IN(PS_ST_CAMERA), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_FOV, PS_AT(scn_desc, fov),
+     PS_NOTHING},
+
+    {"pos", PS_IN(PS_ST_LIGHT), PS_V_NUMBERS, PS_REQUIRED, SCN_P_LIGHT_POS, PS_AT(scn_light, pos),
+     PS_NOTHING},
+    {"color", PS_IN(PS_ST_LIGHT), PS_V_NUMBERS, PS_REQUIRED, SCN_P_LIGHT_COLOR,
+     PS_AT(scn_light, color), PS_NOTHING},
+
+    {"diffuse", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_DIFFUSE,
+     PS_AT(scn_material, diffuse), PS_NOTHING},
+    {"color2", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_COLOR2,
+     PS_AT(scn_material, color2), PS_NOTHING},
+    {"ambient", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_MAT_AMBIENT,
+     PS_AT(scn_material, ambient), PS_NOTHING},
+    {"specular", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_SPECULAR,
+     PS_AT(scn_material, specular), PS_NOTHING},
+    {"shininess", PS_IN(PS_ST_MATERIAL), PS_V_INT, PS_OPTIONAL, 0, PS_AT(scn_material, shininess),
+     PS_RANGE(1, 1000)},
+    {"reflect", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_REFLECT,
+     PS_AT(scn_material, reflect), PS_NOTHING},
+    {"transmit", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_TRANSMIT,
+     PS_AT(scn_material, transmit), PS_NOTHING},
+    {"ior", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_IOR, PS_AT(scn_material, ior),
+     PS_NOTHING},
+    {"texture", PS_IN(PS_ST_MATERIAL), PS_V_WORD, PS_OPTIONAL, 0, PS_AT(scn_material, texture),
+     PS_LIST(ps_textures, RT_TEX_COUNT)},
+    {"palette", PS_IN(PS_ST_MATERIAL), PS_V_WORD, PS_OPTIONAL, 0, PS_AT(scn_material, palette),
+     PS_LIST(ps_palettes, RT_PAL_COUNT)},
+    {"octaves", PS_IN(PS_ST_MATERIAL), PS_V_INT, PS_OPTIONAL, 0, PS_AT(scn_material, octaves),
+     PS_RANGE(1, RT_NOISE_MAX_OCTAVES)},
+    {"scale", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_SCALE,
+     PS_AT(scn_material, scale), PS_NOTHING},
+    {"turbulence", PS_IN(PS_ST_MATERIAL), PS_V_NUMBERS, PS_OPTIONAL, SCN_P_TURBULENCE,
+     PS_AT(scn_material, turbulence), PS_NOTHING},
+
+    {"material", PS_IN_OBJECT, PS_V_MATERIAL, PS_REQUIRED, 0, PS_AT(scn_object, material),
+     PS_NOTHING},
+    {"center", PS_IN(PS_ST_SPHERE), PS_V_NUMBERS, PS_REQUIRED, SCN_P_CENTER,
+     PS_AT(scn_object, center), PS_NOTHING},
+    {"radius", PS_IN(PS_ST_SPHERE), PS_V_NUMBERS, PS_REQUIRED, SCN_P_RADIUS,
+     PS_AT(scn_object, radius), PS_NOTHING},
+    {"normal", PS_IN(PS_ST_PLANE), PS_V_NUMBERS, PS_REQUIRED, SCN_P_NORMAL,
+     PS_AT(scn_object, normal), PS_NOTHING},
+    {"offset", PS_IN(PS_ST_PLANE), PS_V_NUMBERS, PS_REQUIRED, SCN_P_OFFSET,
+     PS_AT(scn_object, offset), PS_NOTHING},
+};
+#define PS_NPROPS (int)(sizeof ps_props / sizeof *ps_props)
+_Static_assert(PS_NPROPS <= PS_MAX_PROPS, "a statement's `seen` has one bit per row of ps_props");
+
+/* The row of property `t` of statement `st`, or -1. */
+static int ps_find(int st, ps_tok t)
+{
+    for (int k = 0; k < PS_NPROPS; k++)
+        if ((ps_props[k].stmts & PS_IN(st)) && ps_is(t, ps_props[k].name))
+            return k;
+    return -1;
+}
+
+/* The value of property row `k` (given as token `prop`) into the record at `base`. */
+static int ps_value(ps_state *ps, int k, ps_tok prop, char *base)
+{
+    const ps_prop *r = &ps_props[k];
+    if (r->kind == PS_V_NUMBERS)
+        return ps_values(ps, prop, r->param, (int32_t *)(void *)(base + r->at));
+    ps_tok v;
+    if (!ps_next(ps, &v))
+        return r->kind == PS_V_MATERIAL
+            ? PS_FAIL(ps, prop.s, "'material' needs a material name")
+            : PS_FAIL(ps, prop.s, "'%.*s' needs a value", prop.len, prop.s);
+    int32_t n = 0;
+    if (r->kind == PS_V_INT && ps_int(ps, v, r->name, r->lo, r->hi, &n) != 0)
+        return -1;
+    if (r->kind == PS_V_TIME && ps_time(ps, v, r->name, &n) != 0)
+        return -1;
+    if (r->kind == PS_V_WORD && (n = ps_word(v, r->words, r->nwords)) < 0) {
+        char list[80];
+        ps_join(list, sizeof list, r->words, r->nwords, " or ");
+        return PS_FAIL(ps, v.s, "unknown %s '%.*s' (expected %s)", r->name, v.len, v.s, list);
+    }
+    if (r->kind == PS_V_MATERIAL) {
+        int owner = -1, item = 0;
+        if (ps_lookup(ps, v, &owner, &item) != 0 || owner != SCN_OWN_MATERIAL)
+            return PS_FAIL(ps, v.s,
+                           "undefined material '%.*s' (materials are defined before the objects "
+                           "that use them)",
+                           v.len, v.s);
+        n = item;
+    }
+    void *dst = base + r->at;
+    if (r->size == 1)
+        *(uint8_t *)dst = (uint8_t)n;
+    else if (r->size == 2)
+        *(uint16_t *)dst = (uint16_t)n;
+    else
+        *(int32_t *)dst = n;
+    return 0;
+}
+
+/* The properties of statement `st` up to the end of the line, into the record at `base`; each
+ * one given sets its row's bit in *seen. */
+static int ps_properties(ps_state *ps, int st, char *base, unsigned *seen)
+{
+    ps_tok t, prev = {0};
+    int prev_arity = 0;
+    while (ps_next(ps, &t)) {
+        int k = ps_find(st, t);
+        if (k < 0) {
+            const char *names[PS_NPROPS];
+            int n = 0;
+            for (int i = 0; i < PS_NPROPS; i++)
+                if (ps_props[i].stmts & PS_IN(st))
+                    names[n++] = ps_props[i].name;
+            char expected[160];
+            ps_join(expected, sizeof expected, names, n, ", ");
+            return ps_bad_property(ps, t, ps_stmt_what[st], prev, prev_arity, expected);
+        }
+        if (ps_once(ps, t, seen, 1u << k) != 0 || ps_value(ps, k, t, base) != 0)
+            return -1;
+        prev = t;
+        prev_arity = ps_props[k].kind == PS_V_NUMBERS ? scn_params[ps_props[k].param].arity : 1;
+    }
+    return 0;
+}
+
+/* The first required property of statement `st` that `seen` lacks, or NULL. */
+static const char *ps_missing(int st, unsigned seen)
+{
+    for (int k = 0; k < PS_NPROPS; k++)
+        if ((ps_props[k].stmts & PS_IN(st)) && ps_props[k].required && !(seen & (1u << k)))
+            return ps_props[k].name;
+    return NULL;
+}
+
+static int ps_camera(ps_state *ps, ps_tok kw)
+{
+    scn_desc *d = &ps->f->desc;
+    if (ps->have_camera)
+        return PS_FAIL(ps, kw.s, "a second camera (the first is at line %d)", ps->camera_line);
+    ps->have_camera = 1;
+    ps->camera_line = ps->line;
+    unsigned seen = 0;
+    if (ps_properties(ps, PS_ST_CAMERA, (char *)d, &seen) != 0)
+        return -1;
+    if (ps_missing(PS_ST_CAMERA, seen))
+        return PS_FAIL(ps, kw.s, "the camera needs both 'eye' and 'at'");
+    if (!memcmp(d->eye, d->at, sizeof d->eye))
+        return PS_FAIL(ps, kw.s, "the camera's 'eye' and 'at' are the same point");
+    return 0;
+}
+
+/* A named item's properties (light, material, sphere, plane), then those it lacks. */
+static int ps_item(ps_state *ps, int st, ps_tok name, char *base)
+{
+    unsigned seen = 0;
+    if (ps_properties(ps, st, base, &seen) != 0)
+        return -1;
+    const char *missing = ps_missing(st, seen);
+    if (missing)
+        return PS_FAIL(ps, name.s, "%s '%.*s' has no '%s'", ps_stmt_word[st], name.len, name.s,
+                       missing);
+    return 0;
+}
+
+static int ps_light(ps_state *ps, ps_tok kw)
+{
+    scn_desc *d = &ps->f->desc;
+    if (d->nlights >= RT_MAX_LIGHTS)
+        return PS_FAIL(ps, kw.s, "more than %d lights", RT_MAX_LIGHTS);
+    ps_tok name;
+    if (ps_new_name(ps, kw, &name, ps->f->light_names[d->nlights]) != 0 ||
+        ps_item(ps, PS_ST_LIGHT, name, (char *)&ps->f->lights[d->nlights]) != 0)
+        return -1;
+    ps->light_line[d->nlights++] = ps->line;
+    return 0;
 }
 
 static int ps_material(ps_state *ps, ps_tok kw)
@@ -361,82 +543,8 @@ static int ps_material(ps_state *ps, ps_tok kw)
                         .turbulence = SCN_ONE,
                         .octaves = 4,
                         .palette = 0xFF};
-    static const char expected[] = "diffuse, color2, ambient, specular, shininess, reflect, "
-                                   "transmit, ior, texture, palette, octaves, scale, turbulence";
-    unsigned seen = 0;
-    ps_tok t, prev = {0};
-    int prev_arity = 0;
-    while (ps_next(ps, &t)) {
-        static const struct {
-            const char *name;
-            int param;
-        } props[] = {{"diffuse", SCN_P_DIFFUSE},
-                     {"color2", SCN_P_COLOR2},
-                     {"ambient", SCN_P_MAT_AMBIENT},
-                     {"specular", SCN_P_SPECULAR},
-                     {"reflect", SCN_P_REFLECT},
-                     {"transmit", SCN_P_TRANSMIT},
-                     {"ior", SCN_P_IOR},
-                     {"scale", SCN_P_SCALE},
-                     {"turbulence", SCN_P_TURBULENCE},
-                     {"shininess", SCN_P_COUNT},
-                     {"texture", SCN_P_COUNT + 1},
-                     {"palette", SCN_P_COUNT + 2},
-                     {"octaves", SCN_P_COUNT + 3}};
-        int k = -1;
-        for (int i = 0; i < (int)(sizeof props / sizeof props[0]); i++)
-            if (ps_is(t, props[i].name))
-                k = i;
-        if (k < 0)
-            return ps_bad_property(ps, t, "a material", prev, prev_arity, expected);
-        if (ps_once(ps, t, &seen, 1u << k) != 0)
-            return -1;
-        int param = props[k].param;
-        prev = t;
-        prev_arity = 1;
-        ps_tok v;
-        if (param < SCN_P_COUNT) {
-            int32_t *dst = param == SCN_P_DIFFUSE ? m->diffuse
-                : param == SCN_P_COLOR2           ? m->color2
-                : param == SCN_P_MAT_AMBIENT      ? &m->ambient
-                : param == SCN_P_SPECULAR         ? &m->specular
-                : param == SCN_P_REFLECT          ? &m->reflect
-                : param == SCN_P_TRANSMIT         ? &m->transmit
-                : param == SCN_P_IOR              ? &m->ior
-                : param == SCN_P_SCALE            ? &m->scale
-                                                  : &m->turbulence;
-            if (ps_values(ps, t, param, dst) != 0)
-                return -1;
-            prev_arity = scn_params[param].arity;
-            continue;
-        }
-        if (!ps_next(ps, &v))
-            return PS_FAIL(ps, t.s, "'%.*s' needs a value", t.len, t.s);
-        int32_t n;
-        if (param == SCN_P_COUNT) {
-            if (ps_int(ps, v, "shininess", 1, 1000, &n) != 0)
-                return -1;
-            m->shininess = (uint16_t)n;
-        } else if (param == SCN_P_COUNT + 1) {
-            if ((n = ps_word(v, ps_textures, RT_TEX_COUNT)) < 0)
-                return PS_FAIL(ps, v.s,
-                               "unknown texture '%.*s' (expected none, checker, marble, "
-                               "wood or noise)",
-                               v.len, v.s);
-            m->texture = (uint8_t)n;
-        } else if (param == SCN_P_COUNT + 2) {
-            if ((n = ps_word(v, ps_palettes, RT_PAL_COUNT)) < 0)
-                return PS_FAIL(ps, v.s,
-                               "unknown palette '%.*s' (expected marble, wood, lava or "
-                               "sky)",
-                               v.len, v.s);
-            m->palette = (uint8_t)n;
-        } else {
-            if (ps_int(ps, v, "octaves", 1, RT_NOISE_MAX_OCTAVES, &n) != 0)
-                return -1;
-            m->octaves = (uint8_t)n;
-        }
-    }
+    if (ps_item(ps, PS_ST_MATERIAL, name, (char *)m) != 0)
+        return -1;
     if (m->palette == 0xFF) /* each noise texture has a palette of its own by default */
         m->palette = m->texture == RT_TEX_WOOD ? RT_PAL_WOOD
             : m->texture == RT_TEX_NOISE       ? RT_PAL_LAVA
@@ -458,56 +566,8 @@ static int ps_object(ps_state *ps, ps_tok kw, int kind)
         return -1;
     scn_object *o = &ps->f->objects[d->nobjects];
     *o = (scn_object){.kind = (uint8_t)kind};
-    const char *expected =
-        kind == RT_SPHERE ? "material, center, radius" : "material, normal, offset";
-    unsigned seen = 0;
-    ps_tok t, prev = {0};
-    int prev_arity = 0;
-    while (ps_next(ps, &t)) {
-        int param = ps_is(t, "material") ? SCN_P_COUNT : -1;
-        if (kind == RT_SPHERE)
-            param = ps_is(t, "center") ? SCN_P_CENTER : ps_is(t, "radius") ? SCN_P_RADIUS : param;
-        else
-            param = ps_is(t, "normal") ? SCN_P_NORMAL : ps_is(t, "offset") ? SCN_P_OFFSET : param;
-        if (param < 0)
-            return ps_bad_property(ps, t, kind == RT_SPHERE ? "a sphere" : "a plane", prev,
-                                   prev_arity, expected);
-        if (ps_once(ps, t, &seen, 1u << (param - SCN_P_CENTER)) != 0)
-            return -1;
-        prev = t;
-        if (param == SCN_P_COUNT) {
-            ps_tok v;
-            int owner = -1, item = 0;
-            if (!ps_next(ps, &v))
-                return PS_FAIL(ps, t.s, "'material' needs a material name");
-            if (ps_lookup(ps, v, &owner, &item) != 0 || owner != SCN_OWN_MATERIAL)
-                return PS_FAIL(ps, v.s,
-                               "undefined material '%.*s' (materials are defined before "
-                               "the objects that use them)",
-                               v.len, v.s);
-            o->material = (uint8_t)item;
-            prev_arity = 1;
-            continue;
-        }
-        int32_t *dst = param == SCN_P_CENTER ? o->center
-            : param == SCN_P_RADIUS          ? &o->radius
-            : param == SCN_P_NORMAL          ? o->normal
-                                             : &o->offset;
-        if (ps_values(ps, t, param, dst) != 0)
-            return -1;
-        prev_arity = scn_params[param].arity;
-    }
-    static const char *const need_sphere[] = {"material", "center", "radius"};
-    static const char *const need_plane[] = {"material", "normal", "offset"};
-    const int bits_sphere[] = {SCN_P_COUNT, SCN_P_CENTER, SCN_P_RADIUS};
-    const int bits_plane[] = {SCN_P_COUNT, SCN_P_NORMAL, SCN_P_OFFSET};
-    for (int i = 0; i < 3; i++) {
-        int b = (kind == RT_SPHERE ? bits_sphere : bits_plane)[i] - SCN_P_CENTER;
-        if (!(seen & (1u << b)))
-            return PS_FAIL(ps, name.s, "%s '%.*s' has no '%s'",
-                           kind == RT_SPHERE ? "sphere" : "plane", name.len, name.s,
-                           (kind == RT_SPHERE ? need_sphere : need_plane)[i]);
-    }
+    if (ps_item(ps, kind == RT_SPHERE ? PS_ST_SPHERE : PS_ST_PLANE, name, (char *)o) != 0)
+        return -1;
     ps->object_line[d->nobjects++] = ps->line;
     return 0;
 }
@@ -615,14 +675,9 @@ static int ps_key(ps_state *ps, ps_tok kw)
     return 0;
 }
 
-/* The statements of the whole scene, each allowed once. */
-static const char *const ps_globals[PS_NGLOBALS] = {"duration", "fps", "depth", "background",
-                                                    "ambient"};
-
 static int ps_statement(ps_state *ps)
 {
-    scn_desc *d = &ps->f->desc;
-    ps_tok kw, t;
+    ps_tok kw;
     if (!ps_next(ps, &kw))
         return 0; /* blank or comment */
     if (ps_is(kw, "camera"))
@@ -637,30 +692,18 @@ static int ps_statement(ps_state *ps)
         return ps_object(ps, kw, RT_PLANE);
     if (ps_is(kw, "key"))
         return ps_key(ps, kw);
-    int g = ps_word(kw, ps_globals, PS_NGLOBALS);
-    if (g >= 0) {
-        if (ps->global_line[g])
-            return PS_FAIL(ps, kw.s, "a second '%s' (the first is at line %d)", ps_globals[g],
-                           ps->global_line[g]);
-        ps->global_line[g] = ps->line;
-    }
-    if (ps_is(kw, "background") || ps_is(kw, "ambient"))
-        return ps_values(ps, kw, ps_is(kw, "ambient") ? SCN_P_AMBIENT : SCN_P_BACKGROUND,
-                         ps_is(kw, "ambient") ? d->ambient : d->background) != 0
-            ? -1
-            : ps_end(ps);
-    if (ps_is(kw, "duration") || ps_is(kw, "fps") || ps_is(kw, "depth")) {
-        if (!ps_next(ps, &t))
-            return PS_FAIL(ps, kw.s, "'%.*s' needs a value", kw.len, kw.s);
-        int rc = ps_is(kw, "duration") ? ps_time(ps, t, "duration", &d->duration_ms)
-            : ps_is(kw, "fps")         ? ps_int(ps, t, "fps", 1, SCN_MAX_FPS, &d->fps)
-                                       : ps_int(ps, t, "depth", 0, RT_MAX_DEPTH, &d->depth);
-        return rc != 0 ? -1 : ps_end(ps);
-    }
-    return PS_FAIL(ps, kw.s,
-                   "unknown statement '%.*s' (expected duration, fps, depth, background, "
-                   "ambient, camera, light, material, sphere, plane or key)",
-                   kw.len, kw.s);
+    /* the statements of the whole scene (duration, fps, ...), each allowed once */
+    int k = ps_find(PS_ST_SCENE, kw);
+    if (k < 0)
+        return PS_FAIL(ps, kw.s,
+                       "unknown statement '%.*s' (expected duration, fps, depth, background, "
+                       "ambient, camera, light, material, sphere, plane or key)",
+                       kw.len, kw.s);
+    if (ps->global_line[k])
+        return PS_FAIL(ps, kw.s, "a second '%s' (the first is at line %d)", ps_props[k].name,
+                       ps->global_line[k]);
+    ps->global_line[k] = ps->line;
+    return ps_value(ps, k, kw, (char *)&ps->f->desc) != 0 ? -1 : ps_end(ps);
 }
 
 /* Largest value of component c of (param, item) over its base value and its keys. */

@@ -1,4 +1,5 @@
-# faults.sh: interrupted, refused and hostile runs leave nothing broken (sourced by tests/run.sh: pass, fail, B and T are its).
+# faults.sh: interrupted, refused and hostile runs leave nothing broken.
+# A part of tests/run.sh (sourced by it: B, T, DEMO and tests/lib.sh's helpers are set).
 # Each check here failed before its fix; FAULTS_RT=program runs the render checks on another
 # build of rt (the sanitized ones too).
 FR=${FAULTS_RT:-$B/rt-fixed}
