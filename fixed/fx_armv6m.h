@@ -1,7 +1,7 @@
 /* fx_armv6m.h: the numeric layer's 32 x 32 -> 64-bit products on ARMv6-M (Cortex-M0/M0+), which has no long multiply (SMULL, UMULL): formed from four 16 x 16 -> 32-bit MULS, inline, with the same bits as the C product.
  *
- * Included by real_fixed.h on ARMv6-M only (elsewhere FX_SMUL and FX_UMUL are the compiler's own
- * 64-bit products). Without it GCC calls libgcc's general 64 x 64-bit multiply (__aeabi_lmul, about
+ * Included by real_fixed.h on ARMv6-M only, where FX_SMUL and FX_UMUL are these functions (elsewhere
+ * the compiler's own 64-bit products); tests/test_numeric.c checks them against those on the host. Without it GCC calls libgcc's general 64 x 64-bit multiply (__aeabi_lmul, about
  * 41 instructions, plus the call and the operands' sign words) for every (int64_t)a * b. With a =
  * ah 2^16 + al and b = bh 2^16 + bl (al, bl in [0, 2^16), ah, bh their high halves, signed or
  * not as the product is): a b = ah bh 2^32 + (ah bl + al bh) 2^16 + al bl; each of the four
@@ -38,8 +38,5 @@ static inline __attribute__((always_inline)) uint64_t fx_v6m_umul(uint32_t a, ui
     r += (uint64_t)(m2 >> 16) << 32 | m2 << 16;
     return r;
 }
-
-#define FX_SMUL_OP(a, b) fx_v6m_smul((int32_t)(a), (int32_t)(b))
-#define FX_UMUL_OP(a, b) fx_v6m_umul((uint32_t)(a), (uint32_t)(b))
 
 #endif
