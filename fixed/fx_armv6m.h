@@ -8,7 +8,8 @@
  * partial products fits 32 bits, and the middle two are added into the 64-bit sum one at a time
  * (their sum can need 33 bits). The divisions and square roots need nothing here: fx.c forms
  * them from these products (fx_udiv64, fx_isqrt64; FX_SOFT_DIVIDE is on where there is no
- * divider), and GCC's __builtin_clz becomes libgcc's table-free __clzsi2 on ARMv6-M.
+ * divider), and GCC's __builtin_clz becomes a call of libgcc's __clzsi2 on ARMv6-M (no CLZ
+ * instruction; about 19 instructions, 2% of a frame).
  */
 #ifndef FIXRAY_FX_ARMV6M_H
 #define FIXRAY_FX_ARMV6M_H
