@@ -23,6 +23,8 @@
  * has no long multiply, fx_armv6m.h's in 32-bit pieces. The same bits either way. */
 #if defined(__ARM_ARCH_6M__)
 #include "fx_armv6m.h"
+#define FX_SMUL_OP(a, b) fx_v6m_smul((int32_t)(a), (int32_t)(b))
+#define FX_UMUL_OP(a, b) fx_v6m_umul((uint32_t)(a), (uint32_t)(b))
 #else
 #define FX_SMUL_OP(a, b) ((int64_t)(a) * (int64_t)(b))
 #define FX_UMUL_OP(a, b) ((uint64_t)(a) * (uint64_t)(b))

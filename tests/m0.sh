@@ -7,7 +7,7 @@
 # board renders grid 4 by default (grid 8's band and storage do not fit 16 KiB), so they are
 # compared with rt-fixed render --grid 4.
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 1
 
 B=build
 T=$B/test/m0

@@ -11,6 +11,9 @@
 
 #include "real.h"
 #include "rt_kernels.h"
+#if REAL_FIXED
+#include "fx_armv6m.h" /* the Cortex-M0's products, checked here against the host's */
+#endif
 
 #if !FX_COUNT_EVENTS
 #error "test_numeric checks the event counters: build it with -DFX_COUNT_EVENTS=1"
@@ -1016,6 +1019,34 @@ static uint64_t ref_isqrt(uint64_t n)
 #if REAL_FIXED /* fx_isqrt64, fx_norm64 and fx_renorm exist in the fixed build only */
 /* The fixed build's own parts: fx_isqrt64, fx_norm64, fx_renorm, and r_mul against
  * libfixmath's fix16_mul bit for bit. */
+/* fx_armv6m.h's products in 32-bit pieces (the Cortex-M0's FX_SMUL and FX_UMUL) are the 64-bit
+ * products: every pair of edge values (the halves' carries and signs) and 2,000,000 random pairs. */
+static void test_armv6m_products(void **state)
+{
+    (void)state;
+    static const int32_t edge[] = {0,          1,           -1,          2,          0x7fff,
+                                   0x8000,     0xffff,      0x10000,     0x10001,    -0x8000,
+                                   -0x8001,    -0xffff,     -0x10000,    -0x10001,   0x7fff0000,
+                                   0x7fffffff, -0x7fffffff, INT32_MIN,   0x12345678, -0x789abcde,
+                                   0x0000ffff, 0x40000000,  -0x40000000, 0x3fffffff, 0x55555555};
+    const int n = (int)(sizeof edge / sizeof *edge);
+    long bad = 0;
+    for (int k = 0; k < n * n + 2000000; k++) {
+        int32_t a, b;
+        if (k < n * n) {
+            a = edge[k / n];
+            b = edge[k % n];
+        } else {
+            uint64_t r = rng();
+            a = (int32_t)(uint32_t)r;
+            b = (int32_t)(uint32_t)(r >> 32);
+        }
+        bad += fx_v6m_smul(a, b) != (int64_t)a * b;
+        bad += fx_v6m_umul((uint32_t)a, (uint32_t)b) != (uint64_t)(uint32_t)a * (uint32_t)b;
+    }
+    assert_int_equal(bad, 0);
+}
+
 static void test_fixed_internals(void **state)
 {
     (void)state;
@@ -1807,6 +1838,7 @@ int main(void)
         cmocka_unit_test_setup(test_wide, reset_checks),
 #if REAL_FIXED
         cmocka_unit_test_setup(test_fixed_internals, reset_checks),
+        cmocka_unit_test_setup(test_armv6m_products, reset_checks),
         cmocka_unit_test_setup(test_sphere_span, reset_checks),
 #endif
         cmocka_unit_test_setup(test_vectors, reset_checks),

@@ -110,7 +110,7 @@ awk 'NR > 3 { print "0x" $1 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a 
     END {
       flush()
       w = total["window_total"]; r = total["run_total"]; k = total["windows"]
-      printf "\ninside the frames: %d instructions over %d frames (%.1f M a frame)\n", w, k, w / k / 1e6
+      printf "\ninside the frames: %d instructions over %d %s (%.1f M a %s)\n", w, k, onewindow ? "frames" : "bands", w / k / 1e6, onewindow ? "frame" : "band"
       printf "the board'\''s icount figures for the same frames: %d over %d frames; difference %d (%.1f a frame)\n", board, frames, w - board, (w - board) / (frames ? frames : 1)
       printf "outside the frames (boot, scene evaluation, PPM writes): %d instructions; whole run %d\n", r - w, r
       table("by function (inlined code counted in the function it was written in):", by_inner, 0)
