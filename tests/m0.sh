@@ -9,19 +9,17 @@
 set -u
 cd "$(dirname "$0")/.." || exit 1
 
-B=build
+. tests/lib.sh
+. tests/board.sh
 T=$B/test/m0
 ELF=$B/m0/intro-fixed.elf
 RAM_LIMIT=16384    # the chip's SRAM: data + bss + the measured stack peak
 FLASH_LIMIT=131072 # half the chip's 256 KiB of flash
 FRAMES=(0 200 425 625 875 1100 1200)
-status=0
-pass() { echo "ok   $*"; }
-fail() { echo "FAIL $*"; status=1; }
 ppm() { printf '%s/qemu-m0/fixed-%04d.ppm' "$B" "$1"; }
 
 [ -f "$ELF" ] || { echo "FAIL $ELF is missing (make m0)"; exit 1; }
-section() { arm-none-eabi-size -A "$1" | awk -v s="$2" '$1 == s { print $2 + 0; found = 1 } END { if (!found) print 0 }'; }
+section() { board_section "$@"; }
 if [ "${1:-}" = --print ]; then # make m0: the image's sizes, nothing checked
   printf '%s: flash (vectors+code+rodata+data) %d B (limit %d of the chip'"'"'s 256 KiB), RAM data %d + bss %d, %d B left for the stack of the 16 KiB (make qemu-m0-frames prints the measured peak)\n' \
     "$ELF" $(($(section "$ELF" .vectors) + $(section "$ELF" .text) + $(section "$ELF" .rodata) + $(section "$ELF" .ARM.exidx) + $(section "$ELF" .data))) \
@@ -142,22 +140,6 @@ else
 fi
 
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.
-MO=$B/obj/m0-fixed
-M0="-mcpu=cortex-m0 -mthumb -mfloat-abi=soft"
-# shellcheck disable=SC2086
-if arm-none-eabi-gcc -std=c11 -O2 $M0 -ffreestanding -Iplatform -c tests/arm_fault.c -o "$T/fault.o" &&
-   arm-none-eabi-gcc $M0 -nostartfiles -T platform/m0/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
-     -Wl,--no-warn-rwx-segments -o "$T/fault.elf" "$T/fault.o" "$MO/start.o" "$MO/platform/board.o" "$MO/platform/band.o" "$MO/platform/m0/m0.o" -lc -lgcc; then
-  timeout --foreground -k 5 30 qemu-system-arm -M microbit -display none -serial stdio -monitor none \
-    -semihosting-config enable=on,target=native,arg=fault -kernel "$T/fault.elf" </dev/null >"$T/fault.log" 2>&1
-  st=$?
-  if [ $st -eq 3 ] && [ "$(grep -c '^error: CPU exception: HardFault (pc=0x' "$T/fault.log")" -eq 1 ] &&
-     ! grep -q 'still running' "$T/fault.log"; then
-    pass "m0: an undefined instruction ends the run with status 3: $(grep '^error' "$T/fault.log")"
-  else
-    fail "m0: undefined instruction: status $st, $(tr '\n' ' ' <"$T/fault.log" | cut -c1-200)"
-  fi
-else
-  fail "m0: could not build tests/arm_fault.c for the M0"
-fi
-exit $status
+board_fault m0 "$T" "-mcpu=cortex-m0 -mthumb -mfloat-abi=soft" platform/m0/link.ld "$B/obj/m0-fixed" "platform/m0/m0.o platform/band.o" \
+  '^error: CPU exception: HardFault (pc=0x' -M microbit
+lib_status
