@@ -11,20 +11,14 @@
 #define FIXRAY_RT_H
 
 #include <stdint.h>
-
 #include "real.h"
 
-/* Objects a scene may have: at most 32 (sets of objects are 32-bit masks). The boards, which
- * play only the scene compiled into them, define it smaller to save RAM (Makefile:
- * BOARD_MAX_OBJECTS; src/app/intro.c refuses a compiled scene with more). */
+/* A scene's limits. Sets of objects are 32-bit masks: at most 32 objects. The boards, which play
+ * only the scene compiled into them, define these to its sizes to save RAM (Makefile:
+ * BOARD_MAX_*; src/app/intro.c refuses a compiled scene with more). */
 #ifndef RT_MAX_OBJECTS
 #define RT_MAX_OBJECTS 32
 #endif
-#if RT_MAX_OBJECTS > 32 || RT_MAX_OBJECTS < 1
-#error "RT_MAX_OBJECTS must be 1..32: sets of objects are 32-bit masks"
-#endif
-/* Lights and materials a scene may have; the Cortex-M boards define them to their compiled
- * scene's (Makefile: BOARD_MAX_LIGHTS, BOARD_MAX_MATERIALS; intro.c refuses a scene with more). */
 #ifndef RT_MAX_LIGHTS
 #define RT_MAX_LIGHTS 4
 #endif
@@ -118,9 +112,6 @@ typedef struct rt_camera {
 #ifndef RT_COMPILED_EFFECTS
 #define RT_COMPILED_EFFECTS RT_FX_ALL
 #endif
-#if (RT_COMPILED_EFFECTS) > RT_FX_ALL
-#error "RT_COMPILED_EFFECTS must be a set of enum rt_effect bits"
-#endif
 
 #include "rt_cull.h" /* rt_scene_cull, the core's own part of rt_scene */
 
@@ -170,8 +161,7 @@ typedef struct rt_hit_rec {
     uint8_t contrib[3]; /* this node's local colour times its weight in the pixel, 0..255 */
 } rt_hit_rec;
 
-/* Everything traced for one image point: the record adaptive subsampling compares. Kept
- * small (60 bytes) because a row of squares' worth of them is the working storage. */
+/* Everything traced for one image point, as adaptive subsampling compares it (60 bytes). */
 typedef struct rt_sample {
     rt_color color;
     union {
@@ -192,9 +182,7 @@ typedef struct rt_sample {
  * --grid square, level k its halves k times over. */
 #define RT_GRID_MAX 16
 #define RT_GRID_LEVELS 4
-/* The largest grid a build renders (the size of the per-square arrays on the stack of
- * subsample.c): RT_GRID_MAX, or less on a board that offers only smaller grids (the Cortex-M
- * boards: 8) and refuses the others before rendering (rt_render_adaptive draws nothing then). */
+/* The largest grid a build renders: less on the Cortex-M boards (src/app/intro.c refuses more). */
 #ifndef RT_GRID_BUILD_MAX
 #define RT_GRID_BUILD_MAX RT_GRID_MAX
 #endif
@@ -233,8 +221,7 @@ enum rt_split_reason {
     RT_SPLIT_COUNT      /* the number of reasons, RT_SPLIT_NONE included */
 };
 
-/* What a frame cost; rt_render adds to it. The counts from squares on are adaptive and probe
- * mode's: squares filled instead of split (subsample_shortcut.c) and their pixels. */
+/* What a frame cost; rt_render adds to it (from squares on: adaptive and probe mode only). */
 typedef struct rt_stats {
     uint32_t rays_primary, rays_shadow, rays_reflect, rays_refract;
     uint32_t shadow_tests;                    /* object intersection tests made by shadow rays */
@@ -256,8 +243,7 @@ typedef struct rt_stats {
  * (rt_scene.cull). Call it again whenever the scene changes. */
 void rt_scene_prepare(rt_scene *s);
 
-/* After rt_scene_prepare: turns every effect on (every light tested against every object, full
- * recursion): the generic path effects on demand is measured against. */
+/* After rt_scene_prepare: every effect on, the path effects on demand is measured against. */
 void rt_scene_force_effects(rt_scene *s);
 
 /* 0 when the camera has no view direction: its eye and the point it looks at coincide (an

@@ -10,6 +10,14 @@
 
 #include "rt.h"
 
+/* The build settings that rt.h takes from the Makefile, checked once for every core file. */
+#if RT_MAX_OBJECTS > 32 || RT_MAX_OBJECTS < 1
+#error "RT_MAX_OBJECTS must be 1..32: sets of objects are 32-bit masks"
+#endif
+#if (RT_COMPILED_EFFECTS) > RT_FX_ALL
+#error "RT_COMPILED_EFFECTS must be a set of enum rt_effect bits"
+#endif
+
 /* A light's state becomes 2 (highlight) when its specular term exceeds this. */
 #define RT_HIGHLIGHT_MIN R(0.125)
 /* Noise pixels: the largest lighting factor A a sample keeps (as A / 2 in a byte). */
