@@ -23,9 +23,12 @@
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
-#   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
+#   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float (and the cycle
+#                   model's estimate beside them)
 #   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
-#                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
+#                   cycles and instructions go: per function inside the frames, ranked by the
+#                   ARM926 cycle model's cycles, with CPI and D-cache misses (a QEMU TCG plugin)
+#   make test-cycles the cycle model against hand-counted programs (tests/cycles.sh)
 #   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
 #   make qemu-m3    play the intro on the emulated OLED in QEMU's window
 #   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
@@ -106,7 +109,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
+        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile test-cycles fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -384,7 +387,7 @@ $(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
 -include $(M3_OBJS:.o=.d)
 
 m3: setup-arm
-	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(PROFILE_PLUGIN)
 	@tests/m3_check.sh --print
 
 qemu-m3: setup-gui
@@ -392,7 +395,7 @@ qemu-m3: setup-gui
 	@platform/m3/qemu.sh play $(SETTINGS)
 
 qemu-m3-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed $(PROFILE_PLUGIN)
 	@platform/m3/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
@@ -443,11 +446,11 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF) $(PROFILE_PLUGIN)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
-	@$(MAKE) --no-print-directory all $(ARM_ELFS)
+	@$(MAKE) --no-print-directory all $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@tests/tradeoff.sh
 
 bench-demo: setup
@@ -497,12 +500,18 @@ qemu: setup-gui
 	@platform/arm/qemu.sh play $(REAL) $(SETTINGS)
 
 qemu-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@platform/arm/qemu.sh frames $(REAL) $(SETTINGS) $(FRAMES)
 
 qemu-bench: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@tests/qemu_bench.sh $(QEMU_BENCH)
+
+# The cycle model against hand-counted programs and the boards' icount figures (tests/cycles.sh;
+# make test runs it too).
+test-cycles: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(PROFILE_PLUGIN)
+	@tests/cycles.sh
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
 qemu-profile: setup-arm

@@ -27,7 +27,7 @@ done
 # Two runs: frames equal the host's byte for byte, counts equal each other.
 for run in 1 2; do
   if platform/m3/qemu.sh frames "${FRAMES[@]}" >"$T/frames-$run.log" 2>&1; then
-    pass "m3: qemu-m3-frames, run $run ($(grep -c '^frame=' "$T/frames-$run.log") frames, mean $(sed -n 's/.* mean=//p' "$T/frames-$run.log") instructions)"
+    pass "m3: qemu-m3-frames, run $run ($(grep -c '^frame=' "$T/frames-$run.log") frames, mean $(sed -n 's/.* mean=\([0-9]*\).*/\1/p' "$T/frames-$run.log") instructions)"
   else
     fail "m3: qemu-m3-frames, run $run: $(tail -2 "$T/frames-$run.log" | tr '\n' ' ')"
   fi
@@ -40,7 +40,7 @@ for n in "${FRAMES[@]}"; do cmp -s "$(ppm "$n")" "$T/host-$n.ppm" && same=$((sam
 [ "$same" -eq ${#FRAMES[@]} ] && pass "m3: frames ${FRAMES[*]}, sent band by band over semihosting, bit-identical to rt-fixed render --size 128x64, in both runs"
 if [ "$(grep -c '^frame=' "$T/frames-1.log")" -eq ${#FRAMES[@]} ] &&
    diff <(grep '^frame=' "$T/frames-1.log") <(grep '^frame=' "$T/frames-2.log") >/dev/null; then
-  pass "m3: two runs give identical instruction counts ($(grep '^frame=' "$T/frames-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
+  pass "m3: two runs give identical instruction and cycle counts ($(grep '^frame=' "$T/frames-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
 else
   fail "m3: instruction counts differ between two runs"
 fi
@@ -53,7 +53,7 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
   if platform/m3/qemu.sh frames $S $n >"$T/set.log" 2>&1 &&
      "$B/rt-fixed" render --size 128x64 --frame $n $S -o "$T/host-set-$n.ppm" 2>/dev/null &&
      cmp -s "$(ppm $n)" "$T/host-set-$n.ppm" && ! cmp -s "$(ppm $n)" "$T/host-$n.ppm"; then
-    pass "m3: frame $n with $S bit-identical to rt-fixed render with them, not the default frame ($(sed -n 's/^frame=.* instructions=//p' "$T/set.log") instructions)"
+    pass "m3: frame $n with $S bit-identical to rt-fixed render with them, not the default frame ($(sed -n 's/^frame=.* instructions=\([0-9]*\).*/\1/p' "$T/set.log") instructions)"
   else
     fail "m3: frame $n with $S: $(tail -2 "$T/set.log" | tr '\n' ' ')"
   fi

@@ -851,6 +851,7 @@ run_part() { # script: counts its ok/FAIL lines; a failing exit without a FAIL l
 run_part tests/play.sh
 run_part tests/arm.sh
 run_part tests/m3.sh
+run_part tests/cycles.sh
 
 # ---- make bench's script, QUICK=1: runs end to end and writes a well-formed table ------------
 # Content, not timings: every configuration has one row, worst >= mean > 0, the fps follow from
