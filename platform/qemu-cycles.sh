@@ -26,6 +26,7 @@ cycles_plugin() {
   rm -f "$cycles_out"
   s="$so,out=$cycles_out,cpu=$cpu,$a"
   [ -z "${QEMU_CYCLES_OPTS:-}" ] || s="$s,$QEMU_CYCLES_OPTS"
+  # shellcheck disable=SC2034  # the caller's
   plugin=(-plugin "$s")
 }
 

@@ -42,7 +42,7 @@ run() {
     a=(-mcpu=cortex-m3 -mthumb)
   fi
   if ! arm-none-eabi-gcc "${a[@]}" -nostdlib -nostartfiles -T "$T/$cpu.ld" -Wl,--no-warn-rwx-segments \
-       "$@" tests/cycles/$cpu.S -o "$elf" 2>"$T/$cpu-$name.build"; then
+       "$@" "tests/cycles/$cpu.S" -o "$elf" 2>"$T/$cpu-$name.build"; then
     fail "cycles: $cpu $name does not build: $(head -3 "$T/$cpu-$name.build" | tr '\n' ' ')"
     return
   fi
@@ -139,8 +139,9 @@ intro() { # BOARD SCRIPT STEP ARGS...
     else
       fail "cycles: $board intro frames $*: the board's icount minus the plugin's count: $d"
     fi
-    grep -q '^cycles: [0-9.]* a instruction' "$T/$board-intro.log" && grep -q '^worst=[0-9]* cycles=[0-9]*$' "$T/$board-intro.log" ||
+    if ! grep -q '^cycles: [0-9.]* a instruction' "$T/$board-intro.log" || ! grep -q '^worst=[0-9]* cycles=[0-9]*$' "$T/$board-intro.log"; then
       fail "cycles: $board bench prints no cycles line: $(tail -3 "$T/$board-intro.log" | tr '\n' ' ')"
+    fi
   else
     fail "cycles: $board bench $*: $(tail -2 "$T/$board-intro.log" | tr '\n' ' ')"
   fi

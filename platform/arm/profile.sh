@@ -100,6 +100,7 @@ awk '$1 == "a" { print "0x" $2 }' "$counts" | arm-none-eabi-addr2line -e "$elf" 
       w = total["window_total"]; r = total["run_total"]; k = pf; wc = total["window_cycles"]
       printf "\ninside the frames: %d instructions over %d frames (%.1f M a frame)\n", w, k, w / k / 1e6
       printf "the ARM926 model'\''s cycles: %d (%.1f M a frame), %.3f a instruction; D-cache read misses %d, instructions fetched with an I-cache miss %d\n", wc, wc / k / 1e6, wc / w, total["window_dmiss"], total["window_imiss"]
+      printf "cycles beyond one an instruction: interlocks %d, taken branches %d, multi-cycle instructions (multiplies, LDM/STM ...) %d, I-cache fills %d, D-cache fills %d\n", total["window_interlock"], total["window_branch"], total["window_multi"], total["window_ifill"], total["window_dfill"]
       printf "the board'\''s icount figures for the same frames: %d over %d frames; difference %d (%.1f a frame)\n", board, frames, w - board, (w - board) / (frames ? frames : 1)
       printf "outside the frames (boot, scene evaluation, PPM writes): %d instructions; whole run %d\n", r - w, r
       table("by function (inlined code counted in the function it was written in):", i_cyc, i_ins, i_dm, 0)
