@@ -85,6 +85,7 @@ check arm926 mul $NOCACHE 16 47 0 "16 dependent MUL: 16 x 2 + 15 result interloc
 check arm926 smull $NOCACHE 16 63 0 "16 dependent SMULL: 16 x 3 + 15 result interlocks" -DCASE_SMULL
 check arm926 loop $NOCACHE 101 199 0 "MOV + 50 SUBS + 49 taken BNE x 3 + 1 not taken" -DCASE_LOOP
 check arm926 ldmstm $NOCACHE 8 38 0 "LDM 4 + STM 7 + LDM of 1 register 2 + STM 2 + LDM 3 + ADD 1 + interlock 1 + PUSH 9 + POP 9" -DCASE_LDMSTM
+check arm926 thumb $NOCACHE 50 104 0 "Thumb: PUSH 5 + POP 4 + POP of 1 register 2 + MOVS 1 + 20 SUBS + 19 taken BNE x 3 + 1 + LDR, ADDS using it 3 + LDRB, ADDS using it 4 + BL pair 4 + BX LR 3" -DCASE_THUMB
 # ---- ARM926 D-cache: 16 KiB, 4 ways, 32-byte lines (128 sets), round-robin, 24-cycle fill --
 # Two passes of L reads, each pass 5L cycles of instructions (2 MOV, L LDR, L SUBS, L-1 taken
 # BNE at 3, 1 not taken); the misses add 24 each.

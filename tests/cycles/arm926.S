@@ -14,10 +14,38 @@ _start:
         ldr     r6, =buf
         mov     r7, #4096
         mov     r8, #0
+#if defined(CASE_THUMB)
+        ldr     r0, =t_start + 1        /* into Thumb state */
+        bx      r0
+        .thumb
+        .balign 32
+t_start:
+        push    {r4-r7, lr}             /* 5 */
+        pop     {r4-r7}                 /* 4 */
+        pop     {r1}                    /* one register: 2 */
+        movs    r0, #20                 /* 1 */
+1:      subs    r0, #1                  /* 20 x 1 */
+        bne     1b                      /* 19 x 3 taken, 1 not */
+        ldr     r1, [r6]                /* 1 */
+        adds    r2, r1, r1              /* 1 + 1: the word loaded just before */
+        ldrb    r1, [r6]                /* 1 */
+        adds    r2, r1, r1              /* 1 + 2: the byte loaded just before */
+        bl      t_sub                   /* the BL pair, run as one: 1 + 3 */
+t_stop:
+        movs    r0, #0x18               /* SYS_EXIT, from Thumb state */
+        ldr     r1, =0x20026
+        svc     0xab
+        b       .
+t_sub:  bx      lr                      /* 3 */
+        .ltorg
+        .arm
+#else
         b       t_start
         .balign 32
 t_start:
-#if defined(CASE_LDCHAIN)
+#endif
+#if defined(CASE_THUMB)
+#elif defined(CASE_LDCHAIN)
         /* 32 loads, each using the one before as its address: 1 cycle + 1 interlock, the last
          * without the interlock (its user lies outside the window) */
         .rept   32
@@ -73,11 +101,13 @@ t_start:
 #else
 #error "no CASE_ given"
 #endif
+#if !defined(CASE_THUMB)
 t_stop:
         mov     r0, #0x18               /* SYS_EXIT */
         ldr     r1, =0x20026            /* ADP_Stopped_ApplicationExit */
         svc     0x123456
         b       .
+#endif
         .ltorg
         .data
         .balign 4
