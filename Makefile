@@ -25,9 +25,13 @@
 #   make qemu       play the ARM intro in QEMU's window (REAL=float: the soft-float image)
 #   make qemu-frames FRAMES="0 250 500" [REAL=fixed|float]   intro frames rendered under QEMU
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
-#   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float
-#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16|m3|m0] [SETTINGS=...]  where the board's
-#                   instructions go: exact counts per function inside the frames (a QEMU TCG plugin)
+#   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float (and the cycle
+#                   model's estimate beside them)
+#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
+#                   cycles and instructions go: per function inside the frames, ranked by the
+#                   ARM926 cycle model's cycles, with CPI and D-cache misses (a QEMU TCG plugin)
+#   make test-cycles the cycle model against hand-counted programs (tests/cycles.sh)
+#   make arm-text-order  rewrite platform/arm/text-order.ld (hot functions first) from a profile
 #   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
 #   make qemu-m3    play the intro on the emulated OLED in QEMU's window
 #   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
@@ -114,7 +118,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
 .PHONY: all run test check bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
-        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames m0 qemu-m0-frames
+        setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile test-cycles arm-text-order fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames m0 qemu-m0-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
 
@@ -313,7 +317,7 @@ $(BUILD)/obj/arm-$(1)/libfixmath/%.o: $(FIXMATH_STAMP)
 $(BUILD)/obj/arm-$(1)/libfixmath.a: $$(patsubst %.c,$(BUILD)/obj/arm-$(1)/libfixmath/%.o,$(FIXMATH_SRCS))
 	rm -f $$@ && arm-none-eabi-ar rcs $$@ $$^
 
-$(BUILD)/arm/intro-$(1).elf: $$(ARM_OBJS_$(1)) $(3) platform/arm/link.ld
+$(BUILD)/arm/intro-$(1).elf: $$(ARM_OBJS_$(1)) $(3) platform/arm/link.ld platform/arm/text-order.ld
 	@mkdir -p $$(@D)
 	$(ARM_CC) $(ARM_LDFLAGS) -Wl,-Map=$$@.map -o $$@ $$(ARM_OBJS_$(1)) $(3) -lm -lc -lgcc
 
@@ -399,7 +403,7 @@ $(M3_ELF): $(M3_OBJS) $(M3_OBJ)/libfixmath.a platform/m3/link.ld
 -include $(M3_OBJS:.o=.d)
 
 m3: setup-arm
-	@$(MAKE) -s --no-print-directory $(M3_ELF)
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(PROFILE_PLUGIN)
 	@tests/m3.sh --print
 
 qemu-m3: setup-gui
@@ -407,7 +411,7 @@ qemu-m3: setup-gui
 	@platform/m3/qemu.sh play $(SETTINGS)
 
 qemu-m3-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed
+	@$(MAKE) -s --no-print-directory $(M3_ELF) $(BUILD)/rt-fixed $(PROFILE_PLUGIN)
 	@platform/m3/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # ---- Cortex-M0 image: bare metal for qemu-system-arm -M microbit (platform/m0/) -------------
@@ -518,11 +522,11 @@ soak: setup-test
 	@tests/soak.sh $(STEP)
 
 bench: setup-arm
-	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF) $(M0_ELF)
+	@$(MAKE) -s --no-print-directory all $(ARM_ELFS) $(M3_ELF) $(M0_ELF) $(PROFILE_PLUGIN)
 	@tests/bench_all.sh
 
 tradeoff: setup-test
-	@$(MAKE) --no-print-directory all $(ARM_ELFS)
+	@$(MAKE) --no-print-directory all $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@tests/tradeoff.sh
 
 bench-demo: setup
@@ -572,12 +576,25 @@ qemu: setup-gui
 	@platform/arm/qemu.sh play $(REAL) $(SETTINGS)
 
 qemu-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@platform/arm/qemu.sh frames $(REAL) $(SETTINGS) $(FRAMES)
 
 qemu-bench: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(PROFILE_PLUGIN)
 	@tests/qemu_bench.sh $(QEMU_BENCH)
+
+# platform/arm/text-order.ld again from the cycle plugin's counts of the benchmark's frames: the
+# functions run inside frames, densest first, at the start of .text (fewer I-cache misses in the
+# cycle model; no instruction or picture changes). Then make arm relinks.
+arm-text-order: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(PROFILE_PLUGIN)
+	@platform/arm/text-order.sh
+
+# The cycle model against hand-counted programs and the boards' icount figures (tests/cycles.sh;
+# make test runs it too).
+test-cycles: setup-arm
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(PROFILE_PLUGIN)
+	@tests/cycles.sh
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
 qemu-profile: setup-arm

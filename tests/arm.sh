@@ -91,8 +91,8 @@ board_two_runs arm fixed ppm_fixed host-fixed "the host's rt-fixed render --size
 # known hot functions have their share, and the plugin leaves the pictures alone.
 if PROFILE_TOP=200 platform/arm/profile.sh fixed 425 875 >"$T/profile.txt" 2>&1; then
   inside=$(sed -n 's/^inside the frames: \([0-9]*\) instructions over 2 frames.*/\1/p' "$T/profile.txt")
-  board=$(sed -n 's/^frame=\(425\|875\) instructions=\([0-9]*\)$/\2/p' "$T/fixed-1.log" | awk '{ s += $1 } END { print s + 0 }')
-  share() { awk -v f="$1" '/^by containing function/ { on = 1; next } /^$/ { on = 0 } on && $3 == f { print $2 }' "$T/profile.txt"; }
+  board=$(sed -n 's/^frame=\(425\|875\) instructions=\([0-9]*\) .*/\2/p' "$T/fixed-1.log" | awk '{ s += $1 } END { print s + 0 }')
+  share() { awk -v f="$1" '/^by containing function/ { on = 1; next } /^$/ { on = 0 } on && $6 == f { print $2 }' "$T/profile.txt"; }
   occ=$(share rt_occluded)
   norm=$(share fx_ray_dir)
   if [ -n "$inside" ] && [ "$board" -gt 0 ] && [ $((inside > board ? inside - board : board - inside)) -le 400 ] &&
@@ -115,7 +115,7 @@ if platform/arm/qemu.sh frames fixed16 "${FRAMES[@]}" >"$T/fixed16.log" 2>&1; th
       cmp -s "$(ppm fixed16 "$n")" "$T/host-fixed16-$n.ppm" && same=$((same + 1))
   done
   if [ "$same" -eq ${#FRAMES[@]} ]; then
-    pass "arm: fixed16 frames ${FRAMES[*]} bit-identical to the host's rt-fixed16 (mean $(sed -n 's/.* mean=//p' "$T/fixed16.log") instructions; fixed: $(sed -n 's/.* mean=//p' "$T/fixed-1.log"))"
+    pass "arm: fixed16 frames ${FRAMES[*]} bit-identical to the host's rt-fixed16 (mean $(sed -n 's/.* mean=\([0-9]*\).*/\1/p' "$T/fixed16.log") instructions; fixed: $(sed -n 's/.* mean=\([0-9]*\).*/\1/p' "$T/fixed-1.log"))"
   else
     fail "arm: $((${#FRAMES[@]} - same)) of the fixed16 frames ${FRAMES[*]} differ from build/rt-fixed16 render --size 320x240"
   fi
@@ -137,8 +137,8 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
       "$B/rt-fixed" render --size 320x240 --frame "$n" $S -o "$T/host-set-$tag-$n.ppm" 2>/dev/null || bad="$bad host render of $n failed;"
       cmp -s "$(ppm fixed "$n")" "$T/host-set-$tag-$n.ppm" || bad="$bad frame $n differs from the host's;"
       cmp -s "$(ppm fixed "$n")" "$T/host-fixed-$n.ppm" && bad="$bad frame $n is the default frame;"
-      c=$(sed -n "s/^frame=$n instructions=\([0-9]*\)$/\1/p" "$T/set-$tag.log")
-      c0=$(sed -n "s/^frame=$n instructions=\([0-9]*\)$/\1/p" "$T/fixed-1.log")
+      c=$(sed -n "s/^frame=$n instructions=\([0-9]*\) .*/\1/p" "$T/set-$tag.log")
+      c0=$(sed -n "s/^frame=$n instructions=\([0-9]*\) .*/\1/p" "$T/fixed-1.log")
       { [ -n "$c" ] && [ "$c" -gt 0 ] && [ "$c" != "$c0" ]; } || bad="$bad frame $n: $c instructions (default $c0);"
       counts="${counts:-}$n: $c (default $c0) "
     done
@@ -159,7 +159,7 @@ done
 
 # Soft-float: the same sources in float, against the host's float build.
 if platform/arm/qemu.sh frames float "${FRAMES[@]}" >"$T/float.log" 2>&1; then
-  pass "arm: qemu-frames float ($(grep -c '^frame=' "$T/float.log") frames, mean $(sed -n 's/.* mean=//p' "$T/float.log") instructions)"
+  pass "arm: qemu-frames float ($(grep -c '^frame=' "$T/float.log") frames, mean $(sed -n 's/.* mean=\([0-9]*\).*/\1/p' "$T/float.log") instructions)"
 else
   fail "arm: qemu-frames float: $(tail -2 "$T/float.log" | tr '\n' ' ')"
 fi

@@ -59,14 +59,14 @@ echo "bench: Cortex-M3 image, frames $q_first..$q_last every $q_step" >&2
 # shellcheck disable=SC2086
 platform/m3/qemu.sh bench $q_first $q_last $q_step >build/bench/qemu-m3.log 2>&1 ||
   die "the M3 image failed (build/bench/qemu-m3.log): $(tail -1 build/bench/qemu-m3.log)"
-printf 'm3\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=//p' build/bench/qemu-m3.log)" \
-  "$(sed -n 's/^worst=//p' build/bench/qemu-m3.log)" >>"$rows"
+printf 'm3\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=\([0-9]*\).*/\1/p' build/bench/qemu-m3.log)" \
+  "$(sed -n 's/^worst=\([0-9]*\).*/\1/p' build/bench/qemu-m3.log)" >>"$rows"
 echo "bench: Cortex-M0 image, frames $q_first..$q_last every $q_step" >&2
 # shellcheck disable=SC2086
 platform/m0/qemu.sh bench $q_first $q_last $q_step >build/bench/qemu-m0.log 2>&1 ||
   die "the M0 image failed (build/bench/qemu-m0.log): $(tail -1 build/bench/qemu-m0.log)"
-printf 'm0\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=//p' build/bench/qemu-m0.log)" \
-  "$(sed -n 's/^worst=//p' build/bench/qemu-m0.log)" >>"$rows"
+printf 'm0\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=\([0-9]*\).*/\1/p' build/bench/qemu-m0.log)" \
+  "$(sed -n 's/^worst=\([0-9]*\).*/\1/p' build/bench/qemu-m0.log)" >>"$rows"
 took=$(($(date +%s) - start))
 q_n=$(grep -c '^frame=' build/bench/qemu-fixed.log)
 d_n=$(seq 0 "$step" 48 | wc -l)

@@ -117,8 +117,8 @@ if [ "${BOARD:-1}" != 0 ]; then
       tail -5 "$out/board.$m" >&2
       exit 1
     }
-    mean[$m]=$(sed -n 's/^frames=[0-9]* mean=//p' "$out/board.$m")
-    worst[$m]=$(sed -n 's/^worst=//p' "$out/board.$m")
+    mean[$m]=$(sed -n 's/^frames=[0-9]* mean=\([0-9]*\).*/\1/p' "$out/board.$m")
+    worst[$m]=$(sed -n 's/^worst=\([0-9]*\).*/\1/p' "$out/board.$m")
     if [ -z "${mean[$m]}" ] || [ -z "${worst[$m]}" ]; then
       echo "bench_modes.sh: no instruction count in the board's output for --mode $m" >&2
       exit 1

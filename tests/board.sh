@@ -99,7 +99,7 @@ board_two_runs() {
   shift 5
   for run in 1 2; do
     if "$@" "${FRAMES[@]}" >"$T/$log-$run.log" 2>&1; then
-      pass "$label: frames on the board, run $run ($(grep -c '^frame=' "$T/$log-$run.log") frames, mean $(sed -n 's/.* mean=//p' "$T/$log-$run.log") instructions)"
+      pass "$label: frames on the board, run $run ($(grep -c '^frame=' "$T/$log-$run.log") frames, mean $(sed -n 's/.* mean=\([0-9]*\).*/\1/p' "$T/$log-$run.log") instructions)"
     else
       fail "$label: frames on the board, run $run: $(tail -2 "$T/$log-$run.log" | tr '\n' ' ')"
     fi
@@ -111,9 +111,9 @@ board_two_runs() {
   [ "$same" -eq ${#FRAMES[@]} ] && pass "$label: frames ${FRAMES[*]} bit-identical to $desc, in both runs"
   if [ "$(grep -c '^frame=' "$T/$log-1.log")" -eq ${#FRAMES[@]} ] &&
      diff <(grep '^frame=' "$T/$log-1.log") <(grep '^frame=' "$T/$log-2.log") >/dev/null; then
-    pass "$label: two runs give identical instruction counts ($(grep '^frame=' "$T/$log-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
+    pass "$label: two runs give identical instruction and cycle counts ($(grep '^frame=' "$T/$log-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
   else
-    fail "$label: instruction counts differ between two runs"
+    fail "$label: instruction or cycle counts differ between two runs"
   fi
 }
 

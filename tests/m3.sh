@@ -73,7 +73,7 @@ for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "-
   if platform/m3/qemu.sh frames $S $n >"$T/set.log" 2>&1 &&
      "$B/rt-fixed" render --size 128x64 --frame $n $S -o "$T/host-set-$n.ppm" 2>/dev/null &&
      cmp -s "$(ppm $n)" "$T/host-set-$n.ppm" && ! cmp -s "$(ppm $n)" "$T/host-$n.ppm"; then
-    pass "m3: frame $n with $S bit-identical to rt-fixed render with them, not the default frame ($(sed -n 's/^frame=.* instructions=//p' "$T/set.log") instructions)"
+    pass "m3: frame $n with $S bit-identical to rt-fixed render with them, not the default frame ($(sed -n 's/^frame=.* instructions=\([0-9]*\).*/\1/p' "$T/set.log") instructions)"
   else
     fail "m3: frame $n with $S: $(tail -2 "$T/set.log" | tr '\n' ' ')"
   fi

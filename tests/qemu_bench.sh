@@ -43,8 +43,8 @@ for real in fixed float; do
   fi
   printf '\rqemu-bench: %s image, frames %s..%s every %s: %d frames in %d s of host time\n' "$real" "$first" \
     "$last" "$step" "$(grep -c '^frame=' "$log")" "$(($(date +%s) - start))" >&2
-  mean[$real]=$(sed -n 's/^frames=.* mean=\([0-9]*\)$/\1/p' "$log")
-  worst[$real]=$(sed -n 's/^worst=\([0-9]*\)$/\1/p' "$log")
+  mean[$real]=$(sed -n 's/^frames=.* mean=\([0-9]*\).*/\1/p' "$log")
+  worst[$real]=$(sed -n 's/^worst=\([0-9]*\).*/\1/p' "$log")
   ram[$real]=$(sed -n 's/^ram: //p' "$log")
 done
 

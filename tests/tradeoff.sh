@@ -161,7 +161,7 @@ arm_run() { # key real options
     f=$(frame_of "$t")
     # shellcheck disable=SC2086  # options are words on purpose
     out=$(platform/arm/qemu.sh bench "$2" $3 "$f" "$f" 1 2>&1) && st=0 || st=$?
-    n=$(sed -n "s/^frame=$f instructions=\([0-9]*\)\$/\1/p" <<<"$out")
+    n=$(sed -n "s/^frame=$f instructions=\([0-9]*\) .*/\1/p" <<<"$out")
     if [ "$st" = 0 ] && [ -n "$n" ]; then
       echo "tradeoff: ARM926 $2 ${3:-(defaults)}, frame $f: $n instructions" >&2
     elif [ "$st" = 2 ] && grep -q "working storage holds grids" <<<"$out"; then

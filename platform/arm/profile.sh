@@ -1,15 +1,14 @@
 #!/usr/bin/env bash
-# profile.sh: where the ARM926 image spends its instructions: exact per-function counts of intro frames under QEMU (make qemu-profile).
+# profile.sh: where the ARM926 image spends its cycles and instructions: exact per-function counts and the timing model's cycles of intro frames under QEMU (make qemu-profile).
 #
-# Usage: platform/arm/profile.sh [fixed|float|fixed16|m3|m0] [SETTINGS] N...
-# (m3, m0: the Cortex-M3 or M0 image, build/m3|m0/intro-fixed.elf at 128x64, run by its board's
-# qemu.sh; a window per band; the M0's clock steps 62.5 instructions, the M3's 20, so their
-# figures may differ from the plugin's by that much a band.)
+# Usage: platform/arm/profile.sh [fixed|float|fixed16] [SETTINGS] N...
 # Renders intro frames N... on the board (platform/arm/qemu.sh frames, under -icount) with the
 # TCG plugin build/arm/qemu_profile.so (platform/arm/qemu_profile.c) loaded: it counts every
-# guest instruction per address, inside the frame's rendering only (from rt_render_band_into's first instruction to
+# guest instruction per address, with the ARM926 timing model's cycles and D-cache read misses
+# (docs/arm.md, Cycle model; QEMU_CYCLES_OPTS passes cache options), inside the frame's rendering only (from rt_render_band_into's first instruction to
 # the board's next clock read). The addresses are mapped to source with
-# `arm-none-eabi-addr2line -f -i` and summed:
+# `arm-none-eabi-addr2line -f -i` and summed, each table ranked by cycles, with instructions,
+# cycles per instruction (CPI) and D-cache misses beside them:
 #   - by function, inlined code counted in the function it was written in (the innermost
 #     inlined function: r_mul, fx_sat, v3_dot_d ...);
 #   - by containing function (the symbol the code was compiled into: rt_occluded, ss_fill ...),
@@ -20,41 +19,25 @@
 # lines) to within 200 instructions a frame (the board's figure also holds the clock reads' call and
 # return, about 60 instructions, and the 24 MHz clock's 42-instruction step); the instructions outside the frames (boot, scene evaluation,
 # the PPM writes) are reported apart. Status 1 if the totals disagree. Everything also goes to
-# build/qemu/profile-REAL.txt, and the raw `ADDRESS COUNT` lines to build/qemu/profile-REAL.counts.
+# build/qemu/profile-REAL.txt, and the plugin's raw `a ADDRESS COUNT CYCLES DMISSES` lines to
+# build/qemu/profile-REAL.counts.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
 die() { printf 'profile.sh: error: %s\n' "$*" >&2; exit 2; }
 real=fixed
-if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ] || [ "$1" = m3 ] || [ "$1" = m0 ]; }; then
+if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ]; }; then
   real=$1
   shift
 fi
-[ $# -ge 1 ] || die "usage: platform/arm/profile.sh [fixed|float|fixed16|m3|m0] [SETTINGS] N..."
+[ $# -ge 1 ] || die "usage: platform/arm/profile.sh [fixed|float|fixed16] [SETTINGS] N..."
 top=${PROFILE_TOP:-25}
 case "$top" in ''|*[!0-9]*|0) die "PROFILE_TOP must be a whole number, 1 or more, not '$top'" ;; esac
 elf=build/arm/intro-$real.elf
-run=(platform/arm/qemu.sh frames "$real")
-size=320x240
-slack=200 # instructions a frame the board's figures may differ by
-onewindow=1 # the plugin's windows (rt_render_band_into to the clock read) are the frames
-if [ "$real" = m0 ] || [ "$real" = m3 ]; then
-  elf=build/$real/intro-fixed.elf
-  run=("platform/$real/qemu.sh" frames)
-  size=128x64
-  slack=1100 # up to 16 bands, each within a clock step, and the clock reads
-  onewindow=0 # a window per band
-fi
 plugin=build/arm/qemu_profile.so
 [ -f "$elf" ] || die "$elf is missing: run make arm first"
 [ -f "$plugin" ] || die "$plugin is missing: run make $plugin (make qemu-profile builds it)"
 command -v arm-none-eabi-addr2line >/dev/null || die "arm-none-eabi-addr2line is missing: run ./setup.sh --arm"
-
-# (awk reads nm's whole output: leaving early would kill nm with SIGPIPE, fatal under pipefail)
-sym() { arm-none-eabi-nm "$elf" | awk -v s="$1" '$3 == s && !f { print "0x" $1; f = 1 }'; }
-start=$(sym rt_render_band_into)
-stop=$(sym plat_time_ns)
-if [ -z "$start" ] || [ -z "$stop" ]; then die "rt_render_band_into or plat_time_ns not found in $elf"; fi
 
 out=build/qemu
 mkdir -p "$out"
@@ -62,62 +45,69 @@ counts=$out/profile-$real.counts
 log=$out/profile-$real.log
 report=$out/profile-$real.txt
 rm -f "$counts"
-QEMU_PLUGIN="$plugin,out=$counts,start=$start,stop=$stop" "${run[@]}" "$@" >"$log" 2>&1 ||
+QEMU_CYCLES_OUT="$counts" platform/arm/qemu.sh frames "$real" "$@" >"$log" 2>&1 ||
   { tail -3 "$log" >&2; die "the $real guest failed (log: $log)"; }
 [ -s "$counts" ] || die "the plugin wrote no counts ($counts)"
 
 # addr2line -a -f -i: for each address a line 0xADDRESS, then (function, file:line) pairs from
 # the innermost inlined function out to the containing one.
-awk 'NR > 3 { print "0x" $1 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a -f -i >"$out/profile-$real.lines"
+awk '$1 == "a" { print "0x" $2 }' "$counts" | arm-none-eabi-addr2line -e "$elf" -a -f -i >"$out/profile-$real.lines"
 
 {
-  echo "profile of the $real image at $size, intro frames and settings: $*"
-  awk -v top="$top" -v logf="$log" -v slack="$slack" -v onewindow="$onewindow" '
+  echo "profile of the $real image at 320x240, intro frames and settings: $*"
+  awk -v top="$top" '
     FNR == 1 { file++ }
-    file == 1 && FNR <= 3 { total[$1] = $2; next }
-    file == 1 { cnt["0x" $1] = $2; next }
+    file == 1 && $1 == "frame" { pf++; next }
+    file == 1 && $1 == "a" { cnt["0x" $2] = $3; cyc["0x" $2] = $4; dm["0x" $2] = $5; next }
+    file == 1 { total[$1] = $2; next }
     file == 2 {
       if ($0 ~ /^0x[0-9a-f]+$/) { flush(); addr = $0; n = 0; line = 0; next }
       if (++line % 2 == 1) fn[++n] = $0
       next
     }
-    file == 3 && /^frame=/ { sub(/.*instructions=/, ""); board += $0; frames++; next }
+    file == 3 && /^frame=/ { sub(/.*instructions=/, ""); board += $1; frames++; next }
     file == 4 && ($2 == "T" || $2 == "t") { entry[$3] = "0x" $1 }
-    function flush(  c, inner, outer) {
+    function flush(  inner, outer, k) {
       if (addr == "" || n == 0) return
-      c = cnt[addr]
       inner = fn[1]; outer = fn[n]
       if (inner == "??") inner = outer
-      by_inner[inner] += c; by_outer[outer] += c; by_pair[inner " in " outer] += c
-      mapped += c
+      k = inner " in " outer
+      i_ins[inner] += cnt[addr]; i_cyc[inner] += cyc[addr]; i_dm[inner] += dm[addr]
+      o_ins[outer] += cnt[addr]; o_cyc[outer] += cyc[addr]; o_dm[outer] += dm[addr]
+      p_ins[k] += cnt[addr]; p_cyc[k] += cyc[addr]; p_dm[k] += dm[addr]
       addr = ""
     }
-    function table(title, a, calls,   k, i, j, t, keys, m, c) {
+    function table(title, c, ins, dmiss, calls,   k, i, j, t, keys, m, e, wc) {
       m = 0
-      for (k in a) keys[++m] = k
+      wc = total["window_cycles"]
+      for (k in c) keys[++m] = k
       # selection of the largest rows (a few hundred keys at most)
-      printf "\n%s\n%14s %7s  %s\n", title, "instructions", "share", calls ? "function                          calls  a call" : "function"
+      printf "\n%s\n%14s %7s %14s %5s %8s  %s\n", title, "cycles", "share", "instructions", "CPI", "D-misses", calls ? "function                          calls  a call" : "function"
       for (i = 1; i <= m && i <= top; i++) {
         for (j = i + 1; j <= m; j++)
-          if (a[keys[j]] > a[keys[i]]) { t = keys[i]; keys[i] = keys[j]; keys[j] = t }
-        c = calls && (keys[i] in entry) ? cnt[entry[keys[i]]] + 0 : 0
-        if (c > 0)
-          printf "%14d %6.2f%%  %-28s %10d %7.0f\n", a[keys[i]], 100 * a[keys[i]] / total["window_total"], keys[i], c, a[keys[i]] / c
+          if (c[keys[j]] > c[keys[i]]) { t = keys[i]; keys[i] = keys[j]; keys[j] = t }
+        k = keys[i]
+        e = calls && (k in entry) ? cnt[entry[k]] + 0 : 0
+        printf "%14d %6.2f%% %14d %5.2f %8d  ", c[k], 100 * c[k] / wc, ins[k], ins[k] ? c[k] / ins[k] : 0, dmiss[k]
+        if (e > 0)
+          printf "%-28s %10d %7.0f\n", k, e, ins[k] / e
         else
-          printf "%14d %6.2f%%  %s\n", a[keys[i]], 100 * a[keys[i]] / total["window_total"], keys[i]
+          printf "%s\n", k
       }
     }
     END {
       flush()
-      w = total["window_total"]; r = total["run_total"]; k = total["windows"]
-      printf "\ninside the frames: %d instructions over %d %s (%.1f M a %s)\n", w, k, onewindow ? "frames" : "bands", w / k / 1e6, onewindow ? "frame" : "band"
+      w = total["window_total"]; r = total["run_total"]; k = pf; wc = total["window_cycles"]
+      printf "\ninside the frames: %d instructions over %d frames (%.1f M a frame)\n", w, k, w / k / 1e6
+      printf "the ARM926 model'\''s cycles: %d (%.1f M a frame), %.3f a instruction; D-cache read misses %d, instructions fetched with an I-cache miss %d\n", wc, wc / k / 1e6, wc / w, total["window_dmiss"], total["window_imiss"]
+      printf "cycles beyond one an instruction: interlocks %d, taken branches %d, multi-cycle instructions (multiplies, LDM/STM ...) %d, I-cache fills %d, D-cache fills %d\n", total["window_interlock"], total["window_branch"], total["window_multi"], total["window_ifill"], total["window_dfill"]
       printf "the board'\''s icount figures for the same frames: %d over %d frames; difference %d (%.1f a frame)\n", board, frames, w - board, (w - board) / (frames ? frames : 1)
       printf "outside the frames (boot, scene evaluation, PPM writes): %d instructions; whole run %d\n", r - w, r
-      table("by function (inlined code counted in the function it was written in):", by_inner, 0)
-      table("by containing function (the symbol the code was compiled into; calls: times its first instruction ran):", by_outer, 1)
-      table("by inlined function within containing function:", by_pair, 0)
+      table("by function (inlined code counted in the function it was written in):", i_cyc, i_ins, i_dm, 0)
+      table("by containing function (the symbol the code was compiled into; calls: times its first instruction ran):", o_cyc, o_ins, o_dm, 1)
+      table("by inlined function within containing function:", p_cyc, p_ins, p_dm, 0)
       d = w - board; if (d < 0) d = -d
-      if ((onewindow && k != frames) || frames == 0 || d > slack * frames) {
+      if (k != frames || frames == 0 || d > 200 * frames) {
         printf "\nprofile: error: the plugin counted %d instructions in %d frames, the board %d in %d\n", w, k, board, frames
         exit 1
       }

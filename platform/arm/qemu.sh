@@ -13,11 +13,15 @@
 # fixed frame rendered with settings is byte for byte `build/rt-fixed render --size 320x240
 # --frame N SETTINGS`.
 # frames and bench run headless under `-icount shift=0` (one guest instruction = 1 ns of virtual
-# time, so the counts are exact and repeatable) and print one `frame=N instructions=M` line per
-# frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use (`ram: ...`). The exit status
-# is the guest's. QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600): a hung guest
-# is an error, not a hang. With QEMU_PLUGIN=FILE.so,ARGS (frames and bench), QEMU loads that TCG
-# plugin (platform/arm/profile.sh passes its instruction counter this way).
+# time, so the counts are exact and repeatable) and print one `frame=N instructions=M cycles=C`
+# line per frame, then `frames=K mean=M cycles=C`, `worst=M cycles=C`, a `cycles:` line (cycles
+# per instruction, estimated fps at 200 MHz and at the i.MX233's 454 MHz) and the guest's RAM use
+# (`ram: ...`). The cycles are the ARM926EJ-S timing model's estimate with its 16 KiB caches
+# (the TCG plugin build/arm/qemu_profile.so, platform/qemu-cycles.sh; docs/arm.md, Cycle model):
+# exact and repeatable like the instruction counts. QEMU_CYCLES_OPTS adds plugin options
+# (e.g. dcache=8192,icache=8192), QEMU_CYCLES_OUT=FILE keeps the plugin's per-address counts
+# (platform/arm/profile.sh). The exit status is the guest's. QEMU runs under a time limit,
+# QEMU_TIMEOUT seconds (default 600): a hung guest is an error, not a hang.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -72,14 +76,23 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
-plugin=()
-[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
+# the cycle estimate: the timing plugin, its figures merged into the guest's lines afterwards
+. platform/qemu-cycles.sh
+cycles_plugin "$elf" arm926
+CYCLES_MHZ="200 454"
+guest_log=$(mktemp)
+trap 'rm -f "$guest_log"; [ -n "${QEMU_CYCLES_OUT:-}" ] || rm -f "$cycles_out"' EXIT
 status=0
 # --foreground: QEMU stays in the terminal's process group (else -serial stdio stops it with
 # SIGTTOU when run from a terminal); -k: killed if it ignores the polite signal; no stdin.
 qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none "${plugin[@]}" \
-  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null ||
+  -icount shift=0,align=off,sleep=off -semihosting-config "$(semihosting "$cmd" "${settings[@]}" "$@")" </dev/null >"$guest_log" ||
   status=$?
+if [ "$status" -eq 0 ]; then
+  cycles_merge "$guest_log" || status=1
+else
+  cat "$guest_log"
+fi
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
   echo "qemu.sh: error: the $real guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
   exit 1

@@ -11,9 +11,13 @@
 # --threshold X, --min-contrib X, --octaves N and --footprint on|off, as `--opt value` or
 # `--opt=value` (defaults as for render; platform/qemu-settings.sh splits them, the board checks them).
 # frames, bench and show run headless under `-icount shift=0` (one guest instruction = 1 ns of
-# virtual time: exact, repeatable counts, 20 ns steps of the board's 50 MHz SysTick) and print
-# `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and the guest's RAM use
-# (`ram: ...`). A frame is byte for byte `build/rt-fixed render --size 128x64 --frame N`. The exit
+# virtual time: exact, repeatable counts, 20 ns steps of the board's 50 MHz SysTick); frames and
+# bench print `frame=N instructions=M cycles=C` per frame, then `frames=K mean=M cycles=C`,
+# `worst=M cycles=C`, a `cycles:` line (cycles per instruction, estimated fps at 50 MHz) and the
+# guest's RAM use (`ram: ...`). The cycles are the Cortex-M3 timing model's estimate (the TCG
+# plugin build/arm/qemu_profile.so with cpu=m3, platform/qemu-cycles.sh; docs/m3.md, Cycle model),
+# exact and repeatable like the counts; QEMU_CYCLES_OPTS and QEMU_CYCLES_OUT as for
+# platform/arm/qemu.sh. A frame is byte for byte `build/rt-fixed render --size 128x64 --frame N`. The exit
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -111,14 +115,23 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
-plugin=() # QEMU_PLUGIN=FILE.so,ARGS: a TCG plugin (make qemu-profile REAL=m3)
-[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
+# the cycle estimate: the timing plugin, its figures merged into the guest's lines afterwards
+. platform/qemu-cycles.sh
+cycles_plugin "$elf" m3
+CYCLES_MHZ=50
+guest_log=$(mktemp)
+trap 'rm -f "$guest_log"; [ -n "${QEMU_CYCLES_OUT:-}" ] || rm -f "$cycles_out"' EXIT
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
 qemu_run timeout --foreground -k 10 "$timeout_s" qemu-system-arm "${common[@]}" -display none -serial stdio -monitor none \
-  -icount shift=0,align=off,sleep=off ${plugin[@]+"${plugin[@]}"} \
-  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
+  "${plugin[@]}" -icount shift=0,align=off,sleep=off \
+  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null >"$guest_log" ||
   status=$?
+if [ "$status" -eq 0 ]; then
+  cycles_merge "$guest_log" || status=1
+else
+  cat "$guest_log"
+fi
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
   echo "qemu.sh: error: the M3 guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
   exit 1

@@ -172,6 +172,8 @@ static int intro_play(void)
             intro_num(&l, fps100 / 100);
             intro_str(&l, fps100 % 100 < 10 ? ".0" : ".");
             intro_num(&l, fps100 % 100);
+            /* under QEMU the timer follows the host: the figure is the emulator's speed */
+            intro_str(&l, " by the timer (under QEMU: the emulator's speed, not the board's)");
             plat_log(l.s);
             shown = 0;
             t_fps = now;
