@@ -5,6 +5,8 @@
 #   make run        set up if needed, play the intro in a window (without a display: render it
 #                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite
+#   make quality    adaptive and probe mode against full mode on every example and hard scene,
+#                   both builds: a table, and docs/quality.md
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
 #                   the Cortex-M3 under QEMU (instructions per frame, fps at 200 and 50 MHz);
@@ -105,7 +107,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
+.PHONY: all run test quality bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -465,6 +467,11 @@ bench-effects: setup
 bench-modes: setup-test setup-arm
 	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
 	@tests/bench_modes.sh
+
+# Adaptive and probe mode against full mode on every scene; writes docs/quality.md (tests/quality.sh).
+quality: setup
+	@$(MAKE) -s --no-print-directory all
+	@tests/quality.sh --doc docs/quality.md
 
 STRESS_RAYS ?= 20000000
 stress: setup

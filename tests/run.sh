@@ -655,6 +655,9 @@ while read -r line; do
   esac
 done < <(tests/hard_scenes.sh 2>&1)
 
+# Subsampled modes against full mode on every example and hard scene (tests/quality.sh, docs/quality.md).
+if tests/quality.sh --short >"$T/quality.log" 2>&1; then pass "quality --short: $(grep -c "| ok" "$T/quality.log") frames within the targets; $(grep "^| fixed | probe" "$T/quality.log")"; else fail "quality --short: $(grep ^FAIL "$T/quality.log" | tr "\n" " ")"; fi
+
 # ---- each texture its own reach (docs/scene-format.md): a checker plane takes scale 1 and up
 # to 1.5625 (points 20480 units out, x 1.5625 = 32000), rendered towards the far edge of the
 # scene with no numeric event, fixed against float; noise textures keep their 20000 (bad_scenes).
