@@ -85,7 +85,7 @@ APP_SRCS := src/app/app.c src/app/cli.c src/app/play.c src/app/frame.c src/scene
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
 SDL_LIBS = $(shell pkg-config --libs sdl2)
-TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability
+TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability test_optics
 # Tests of the fixed-point format itself, built in san-fixed and san-fixed16.
 FIXED_TESTS := test_format
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS) $(FIXED_TESTS))

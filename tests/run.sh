@@ -71,7 +71,7 @@ fi
 
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
+  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability test_optics; do
     if "$B/$v/$t" >"$T/$v-$t.log" 2>&1; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
       grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib|plane|normalise|  )' "$T/$v-$t.log" | sed 's/^/       /'
