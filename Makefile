@@ -74,8 +74,10 @@ FUZZ_CFLAGS := -O1 -fno-omit-frame-pointer -fsanitize=fuzzer-no-link $(FUZZ_SAN)
 # The tracer core (src/core/, fixed/) and the integer-only scene code that every program,
 # the boards included, runs: the timeline and the render settings (src/scene/). The same
 # sources in every variant.
+SUBSAMPLE_SRCS := src/core/subsample.c src/core/subsample_split.c src/core/subsample_fill.c \
+                  src/core/subsample_shortcut.c src/core/subsample_local.c
 TRACER_SRCS := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c \
-               src/core/render.c src/core/subsample.c src/core/probe.c src/core/noise.c src/core/texture.c
+               src/core/render.c $(SUBSAMPLE_SRCS) src/core/probe.c src/core/noise.c src/core/texture.c
 SCENE_SRCS := src/scene/scn.c src/scene/knobs.c
 CORE_SRCS := $(TRACER_SRCS) $(SCENE_SRCS)
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
@@ -230,7 +232,7 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # data instead of relocated data; -fno-plt: calls into SDL2, libpng and libc go through the GOT
 # (bound at start-up), with no PLT stubs.
 PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/probe.c
-PLAYER_COLD := src/core/subsample.c src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
+PLAYER_COLD := $(SUBSAMPLE_SRCS) src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \

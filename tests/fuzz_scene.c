@@ -7,7 +7,7 @@
 
 #include "knobs.h"
 #include "noise.h"
-#include "rt.h"
+#include "rt_local.h"
 #include "scn.h"
 #include "scn_parse.h"
 

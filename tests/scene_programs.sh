@@ -29,7 +29,7 @@ CFLAGS="-std=c11 -Wall -Wextra -Werror -Wundef -Wstrict-prototypes -Wshadow -ffp
 CFLAGS="$CFLAGS -ffunction-sections -fdata-sections -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -DFIXMATH_NO_CACHE"
 [ "$(uname -m)" = x86_64 ] && CFLAGS="$CFLAGS -mgeneral-regs-only"
 INC="-Ifixed -Isrc/core -Isrc/scene -Isrc/app -isystem $B/deps/libfixmath/libfixmath"
-CORE="fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c src/core/render.c src/core/subsample.c src/core/probe.c src/core/noise.c src/core/texture.c src/scene/scn.c src/scene/knobs.c"
+CORE="fixed/fx.c src/core/trace.c src/core/shapes.c src/core/prepare.c src/core/camera.c src/core/render.c src/core/subsample.c src/core/subsample_split.c src/core/subsample_fill.c src/core/subsample_shortcut.c src/core/subsample_local.c src/core/probe.c src/core/noise.c src/core/texture.c src/scene/scn.c src/scene/knobs.c"
 LIB=$B/obj/fixed/libfixmath.a
 
 # Builds program $1 from generated scene source $2 and effects header $3.

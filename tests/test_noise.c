@@ -9,7 +9,7 @@
 #include <cmocka.h>
 
 #include "noise.h"
-#include "rt.h"
+#include "rt_local.h"
 
 #if REAL_FIXED
 static double to_d(real r) { return r / 65536.0; }

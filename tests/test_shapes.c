@@ -8,7 +8,7 @@
 
 #include <cmocka.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 #if REAL_FIXED
 static double to_d(real r) { return r / 65536.0; }
@@ -237,7 +237,7 @@ static int shadow_segment(const rt_scene *s, double cx, double cy, double cz, do
     return 1;
 }
 
-/* The shadow rays' quick rejection (rt_scene.shadow_cull) never changes a result: shadow
+/* The shadow rays' quick rejection (rt_scene.cull.shadow_cull) never changes a result: shadow
  * segments built as trace.c builds them (from a surface point lifted R_EPS_OFFSET, aimed from
  * the point or from the lifted point, stopped R_EPS_OFFSET short of the light) that pass within
  * a hair of a sphere give the same answer through rt_occluded as through the sphere test
@@ -288,7 +288,7 @@ static void test_shadow_cull(void **state)
                      want, i, r, rq);
         hits += want;
         real cd = v3_dot_d_in(v3_sub_in(o->center, s.lights[0].pos), l);
-        rcull kc = s.shadow_cull[0][0];
+        rcull kc = s.cull.shadow_cull[0][0];
         if (kc != 0 && r_cull_rejects(cd, kc)) {
             culled++;
             if (rq - r < 0.012 + r * 0.002)
@@ -366,7 +366,7 @@ static void test_behind_cut(void **state)
 }
 
 /* The bounding sphere's rejection of shadow rays (rt_scene.bound_*) and the quadrants of the
- * light's shadow rays (rt_scene.shadow_quad) never change a result: for clusters of 2 to 6
+ * light's shadow rays (rt_scene.cull.shadow_quad) never change a result: for clusters of 2 to 6
  * spheres and a light, shadow segments built as trace.c builds them that pass just outside or
  * inside the bound, or graze a sphere touching it, are blocked through rt_occluded exactly when
  * they are with the bound switched off (bound_set = 0), and with the quadrants switched off too
@@ -393,17 +393,17 @@ static void test_shadow_bound(void **state)
                lz = oz + rnd(-8, 8) * size;
         s.lights[0].pos = vd(lx, ly, lz);
         rt_scene_prepare(&s);
-        if (!s.bound_set)
+        if (!s.cull.bound_set)
             fail_msg("no bound for %d spheres", s.nobjects);
         plain = s;
-        plain.bound_set = 0;
+        plain.cull.bound_set = 0;
         open = plain;
         for (int q = 0; q < 4; q++)
-            open.shadow_quad[0][q] = 0xFFFFFFFFu;
+            open.cull.shadow_quad[0][q] = 0xFFFFFFFFu;
         /* a point q near the bound's surface (or, every third case, near a sphere's), at right
          * angles to the light, and a surface point p beyond it as seen from the light */
-        double cx = to_d(s.bound_center.x), cy = to_d(s.bound_center.y),
-               cz = to_d(s.bound_center.z), rb = to_d(s.bound_radius);
+        double cx = to_d(s.cull.bound_center.x), cy = to_d(s.cull.bound_center.y),
+               cz = to_d(s.cull.bound_center.z), rb = to_d(s.cull.bound_radius);
         if (i % 3 == 0) {
             const rt_object *o = &s.objects[i % s.nobjects];
             cx = to_d(o->center.x), cy = to_d(o->center.y), cz = to_d(o->center.z);
@@ -447,7 +447,7 @@ static void test_shadow_bound(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
-/* The per-object occluder sets (rt_scene.occ_of) never change a result: shadow segments built
+/* The per-object occluder sets (rt_scene.cull.occ_of) never change a result: shadow segments built
  * as trace.c builds them (from a point, lifted R_EPS_OFFSET along a normal facing the light,
  * aimed from the point or from the lifted point) from points of a sphere A (on its surface or
  * off it by up to 1e-4) are blocked through rt_occluded with occ_of[0][A] exactly when they are
@@ -544,7 +544,7 @@ static void test_shadow_pairs(void **state)
             continue;
         real seg = r_sub(dist, R_EPS_OFFSET);
         uint32_t self = (uint32_t)1 << a, all = s.occluders[0] & ~self,
-                 some = s.occ_of[0][a] & ~self;
+                 some = s.cull.occ_of[0][a] & ~self;
         if ((some & ~all) != 0)
             fail_msg("occ_of %x is not within the occluders %x (case %d)", (unsigned)some,
                      (unsigned)all, i);
@@ -653,9 +653,9 @@ static void test_plane_pairs(void **state)
             continue;
         real seg = r_sub(dist, R_EPS_OFFSET);
         uint32_t self = (uint32_t)1 << a, floor = (uint32_t)1 << pl;
-        uint32_t all = s.occluders[0] & ~self, some = s.occ_of[0][a];
+        uint32_t all = s.occluders[0] & ~self, some = s.cull.occ_of[0][a];
         if (inside && RT_PLANE_CULL)
-            some |= s.occluders[0] & s.plane_set;
+            some |= s.occluders[0] & s.cull.plane_set;
         assert_true((all & floor) != 0);
         rt_stats st = {0};
         int want = rt_occluded(&s, &st, 0, all, &p_out, &l, seg);
@@ -728,8 +728,8 @@ static void test_primary_cull(void **state)
             fail_msg("rt_nearest %d at %g, rt_nearest_primary %d at %g (case %d)", id1, to_d(t1),
                      id2, to_d(t2), i);
         hits += id1 >= 0 && s.objects[id1].kind == RT_SPHERE;
-        real tca = v3_dot_d_in(s.eye_l[base + i % 3], d);
-        wide k = s.eye_cull[base + i % 3];
+        real tca = v3_dot_d_in(s.cull.eye_l[base + i % 3], d);
+        wide k = s.cull.eye_cull[base + i % 3];
         if (k > 0 && (tca <= 0 || w_sq(tca) < k)) {
             culled++;
             if (rq - r < 0.012 + r * 0.002 && rq > r)
@@ -792,8 +792,8 @@ static void test_primary_tiles(void **state)
                 for (int i = 0; i < 8; i++) {
                     if (cand & (1u << i))
                         continue;
-                    real tca = v3_dot_d_in(s.eye_l[i], d);
-                    wide k = s.eye_cull[i];
+                    real tca = v3_dot_d_in(s.cull.eye_l[i], d);
+                    wide k = s.cull.eye_cull[i];
                     if (!(k > 0 && (tca <= 0 || w_sq(tca) < k)))
                         fail_msg("case %d: sphere %d left out of pixel (%d, %d) of %dx%d, whose "
                                  "ray eye_cull does not reject",
@@ -890,7 +890,7 @@ static void test_mirror_tiles(void **state)
         const int *wh = sizes[n % 5];
         rt_view_init(&v, &s.camera, wh[0], wh[1]);
         rt_view_cull(&v, &s);
-        if (s.eye_num[pl] >= 0) { /* the eye (rounded) on the plane or behind it: no mirror */
+        if (s.cull.eye_num[pl] >= 0) { /* the eye (rounded) on the plane or behind it: no mirror */
             assert_int_equal(v.mirror_plane, -1);
             continue;
         }
@@ -907,7 +907,7 @@ static void test_mirror_tiles(void **state)
                 real t;
                 if (rt_nearest_primary(&s, d, rt_view_candidates(&v, x, y), &t) != pl)
                     continue;
-                vec3 p = v3_along_in(s.eye_at, d, t);
+                vec3 p = v3_along_in(s.cull.eye_at, d, t);
                 unit dn = d3_dot(d, nn);
                 if (!v3_within(p, R_SCENE_MAX) || dn > 0)
                     continue; /* no reflected ray (hit from behind: not the mirror's case) */
@@ -1066,7 +1066,7 @@ static void test_far_mirror_chain(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
-/* The secondary rays' candidate sets (rt_scene.ray_oct, ray_in): rays cast as trace_secondary
+/* The secondary rays' candidate sets (rt_scene.cull.ray_oct, ray_in): rays cast as trace_secondary
  * casts them from hits on a sphere (mirrored and refracted, from outside and inside) among
  * spheres that rest on a floor, touch, overlap or stand apart, find through rt_nearest_from with
  * the sets (and ray_in's check: searched again with ray_oct's where the sphere is not the hit)
@@ -1153,8 +1153,8 @@ static void test_ray_sets(void **state)
             real t1, t2, t_in;
             int want = rt_nearest_set(&s, o2, rd, R_T_MAX, ~(uint32_t)0, &t1);
             int got = rt_nearest_from(&s, o2, rd, R_T_MAX, 2 * a + into, ~(uint32_t)0, &t2);
-            uint32_t cand = s.ray_oct[a][rt_octant(rd)], all = ((uint32_t)1 << s.nobjects) - 1;
-            uint32_t in = cand & s.ray_in[a];
+            uint32_t cand = s.cull.ray_oct[a][rt_octant(rd)], all = ((uint32_t)1 << s.nobjects) - 1;
+            uint32_t in = cand & s.cull.ray_in[a];
             if (into && rt_nearest_set(&s, o2, rd, R_T_MAX, in, &t_in) != a) {
                 again++;
                 in = cand; /* searched again with ray_oct's */
@@ -1179,7 +1179,7 @@ static void test_ray_sets(void **state)
     assert_int_equal(fx_event_count[FX_EV_OVERFLOW], 0);
 }
 
-/* A point seen from inside a sphere is in the sphere's own shadow where rt_scene.dark_inside and
+/* A point seen from inside a sphere is in the sphere's own shadow where rt_scene.cull.dark_inside and
  * dark_r say so: rt_light_reach's shortcut (no normalisation, no shadow ray test) gives what
  * the full test gives, for points of glass spheres of radius 0.05 to 200 hit from inside (near
  * the origin and 1500 units out) or off the surface by up to 3 R_EPS_OFFSET either side, lights
@@ -1221,7 +1221,7 @@ static void test_dark_inside(void **state)
         rt_scene_prepare(&s);
         plain = s;
         for (int l = 0; l < RT_MAX_LIGHTS; l++)
-            plain.dark_inside[l] = 0;
+            plain.cull.dark_inside[l] = 0;
         /* a hit on sphere 1 from inside it, as the tracer finds it */
         double q = rnd(0, 0.9) * r, ox = rnd(-1, 1), oy = rnd(-1, 1), oz = rnd(-1, 1);
         double on = sqrt(ox * ox + oy * oy + oz * oz) + 1e-9;

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "knobs.h"
-#include "rt.h"
+#include "rt_local.h"
 
 /* The default threshold of the programs (knobs.h). */
 static const knobs ts_knobs = KNOBS_DEFAULTS;
@@ -517,7 +517,7 @@ static int check_edge(rt_scene *s, enum rt_split_reason reason, int min_percent,
     /* Shadow pixels (test_shadow_pixels) fill 2x2 and 4x4 squares on a shadow's edge instead of
      * splitting them; with the view's eye not the prepared one they do not: the split path. */
     if (reason == RT_SPLIT_LIGHT)
-        s->eye_at.x = r_add(s->eye_at.x, from_d(1));
+        s->cull.eye_at.x = r_add(s->cull.eye_at.x, from_d(1));
     rt_view v;
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
@@ -937,7 +937,7 @@ static void test_adaptive_reference(void **state)
     rt_scene_prepare(&s);
     /* the plain recursion: no shadow pixels (test_shadow_pixels), which a view whose eye is not
      * the prepared one does not fill */
-    s.eye_at.x = r_add(s.eye_at.x, from_d(1));
+    s.cull.eye_at.x = r_add(s.cull.eye_at.x, from_d(1));
     const int sizes[][2] = {{W, H}, {W - 1, H - 1}, {37, 29}, {17, 33}, {61, 5}, {3, 3}};
     const int grids[] = {2, 4, 8, 16};
     long pixels = 0, used = 0, kept = 0, local = 0;
@@ -1019,7 +1019,7 @@ static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_p
 {
     rt_scene_prepare(s);
     if (unprepared) /* the view's eye not the prepared one: no shadow pixels */
-        s->eye_at.x = r_add(s->eye_at.x, from_d(1));
+        s->cull.eye_at.x = r_add(s->cull.eye_at.x, from_d(1));
     rt_view v;
     rt_view_init(&v, &s->camera, W, H);
     const rt_params pf = {.depth = s->depth, .mode = RT_MODE_FULL};
@@ -1507,7 +1507,8 @@ static void test_checker_cells(void **state)
     plain.materials[mf].tex.kind = RT_TEX_NONE;
     rt_scene_prepare(&plain);
     split = s;
-    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    split.cull.eye_at.x =
+        r_add(split.cull.eye_at.x, from_d(1)); /* views from the camera: not prepared */
     rt_view v;
     rt_view_init(&v, &s.camera, W, H);
     const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL};
@@ -1617,7 +1618,8 @@ static void test_noise_pixels(void **state)
     noise_scene(&scaled, 2.2 * 1.02, 4);
     noise_scene(&coarse, 2.2, 2);
     split = s;
-    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    split.cull.eye_at.x =
+        r_add(split.cull.eye_at.x, from_d(1)); /* views from the camera: not prepared */
     rt_view v;
     rt_view_init(&v, &s.camera, W, H);
     const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL, .footprint = 1};
@@ -1674,7 +1676,8 @@ static void test_shadow_pixels(void **state)
     s.nlights = 2;
     rt_scene_prepare(&s);
     split = s;
-    split.eye_at.x = r_add(split.eye_at.x, from_d(1)); /* views from the camera: not prepared */
+    split.cull.eye_at.x =
+        r_add(split.cull.eye_at.x, from_d(1)); /* views from the camera: not prepared */
     rt_view v;
     rt_view_init(&v, &s.camera, W, H);
     const rt_params pf = {.depth = s.depth, .mode = RT_MODE_FULL};

@@ -1,5 +1,5 @@
 /* camera.c: the camera: the look-at frame and the primary ray through each pixel. */
-#include "rt.h"
+#include "rt_local.h"
 
 int rt_view_ok(const rt_camera *cam)
 {
@@ -112,10 +112,10 @@ VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
     if (!rt_scene_at_eye(s, v->eye))
         return; /* rt_nearest_primary does not serve this view */
     for (int i = 0; i < s->nobjects; i++) {
-        real cone = s->eye_cone[i];
-        if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->eye_cull[i] <= 0)
+        real cone = s->cull.eye_cone[i];
+        if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->cull.eye_cull[i] <= 0)
             continue;
-        view_cone(v, v->cull_cols, v->cull_rows, s->eye_l[i], cone, (uint32_t)1 << i);
+        view_cone(v, v->cull_cols, v->cull_rows, s->cull.eye_l[i], cone, (uint32_t)1 << i);
     }
     /* The reflections off the frame's mirror: each sphere's mirror cone (rt_scene_mirror_cone)
      * is the set of primary directions whose reflected ray can hit it; a plane stays in every

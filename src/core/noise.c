@@ -1,7 +1,7 @@
 /* noise.c: 3D Perlin gradient noise, fBm and turbulence, and the colour palettes of the textures. */
 #include "noise.h"
 
-#include "rt.h"
+#include "rt_local.h"
 
 /* Lattice coordinates are Q16.16 integers modulo the period: 24 bits. */
 #define NOISE_FRAC 16

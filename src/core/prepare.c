@@ -1,5 +1,5 @@
 /* prepare.c: derived scene data: per-frame constants, culling, and the effects a scene needs. */
-#include "rt.h"
+#include "rt_local.h"
 
 /* The absolute slack terms of the proven margins below (each proof says which it takes and
  * why): powers of two, exact in both builds and far above half a Q16.16 step (2^-17). */
@@ -109,26 +109,26 @@ static void scene_derive_effects(rt_scene *s)
             fx |= RT_FX_SHADOW;
     }
     s->effects = fx;
-    s->forced = 0;
+    s->cull.forced = 0;
 }
 
 void rt_scene_force_effects(rt_scene *s)
 {
     s->effects = RT_FX_ALL;
     s->reach_depth = RT_MAX_DEPTH;
-    s->forced = 1;
+    s->cull.forced = 1;
     for (int l = 0; l < RT_MAX_LIGHTS; l++) {
         s->occluders[l] = s->nobjects >= 32 ? 0xFFFFFFFFu : ((uint32_t)1 << s->nobjects) - 1;
         for (int j = 0; RT_SHADOW_SETS && j < RT_MAX_OBJECTS; j++)
-            s->occ_of[l][j] = s->occluders[l];
+            s->cull.occ_of[l][j] = s->occluders[l];
     }
     for (int j = 0; j < RT_MAX_OBJECTS; j++) { /* every secondary ray tests every object */
         for (int q = 0; q < 8; q++)
-            s->ray_oct[j][q] = 0xFFFFFFFFu;
-        s->ray_in[j] = 0xFFFFFFFFu;
+            s->cull.ray_oct[j][q] = 0xFFFFFFFFu;
+        s->cull.ray_in[j] = 0xFFFFFFFFu;
     }
     for (int l = 0; l < RT_MAX_LIGHTS; l++) /* and every shadow ray is tested */
-        s->dark_inside[l] = 0;
+        s->cull.dark_inside[l] = 0;
 }
 
 /* Does the surface of object o pass within RT_NEAR_LIGHT of the point q? */
@@ -170,8 +170,8 @@ static real scene_cone(wide d2, real d, wide k, real e)
     return sn < R_ONE ? sn : 0;
 }
 
-/* The rejection of sphere o for rays from or toward the point lp (rt_scene.shadow_cull: a light,
- * reach 2 R_EPS_OFFSET; rt_scene.eye_cull: the eye, reach 0, where the ray starts at lp
+/* The rejection of sphere o for rays from or toward the point lp (rt_scene.cull.shadow_cull: a light,
+ * reach 2 R_EPS_OFFSET; rt_scene.cull.eye_cull: the eye, reach 0, where the ray starts at lp
  * itself and s = tca, pointing away when s <= 0).
  *
  * A shadow ray is the segment from p_out (the hit point lifted R_EPS_OFFSET off the surface)
@@ -206,13 +206,13 @@ static wide scene_cull(const rt_object *o, vec3 lp, real reach, real *cone)
 
 int rt_scene_mirror(const rt_scene *s)
 {
-    if (!rt_scene_has(s, RT_FX_REFLECT) || s->forced)
+    if (!rt_scene_has(s, RT_FX_REFLECT) || s->cull.forced)
         return -1; /* no reflected ray, or trace_secondary tests every object */
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
         const rt_material *m = &s->materials[o->material];
         /* eye_num < 0: the eye on the side the normal points to, which every ray from it meets */
-        if (o->kind == RT_PLANE && (m->reflect > 0 || m->transmit > 0) && s->eye_num[i] < 0)
+        if (o->kind == RT_PLANE && (m->reflect > 0 || m->transmit > 0) && s->cull.eye_num[i] < 0)
             return i;
     }
     return -1;
@@ -261,12 +261,12 @@ real rt_scene_mirror_cone(const rt_scene *s, int pl, int i, vec3 *l)
     m.center = v3_along(o->center, p->normal, r_neg(r_muli(side, 2)));
     if (!v3_within(m.center, R_SCENE_MAX))
         return 0;
-    vec3 lc = v3_sub(m.center, s->eye_at);
+    vec3 lc = v3_sub(m.center, s->cull.eye_at);
     real dist = r_sqrt_w(w_len2(lc));
     real reach = r_add(r_add(r_muli(R_EPS_OFFSET, 2), PREP_SLACK_7),
                        r_shr(r_add(r_add(dist, o->radius), r_muli(r_abs(side), 2)), 10));
     real cone = 0;
-    if (scene_cull(&m, s->eye_at, reach, &cone) <= 0 || cone <= 0)
+    if (scene_cull(&m, s->cull.eye_at, reach, &cone) <= 0 || cone <= 0)
         return 0;
     *l = lc;
     return cone;
@@ -296,7 +296,7 @@ static void scene_bound(rt_scene *s)
         hi = v3(r_max(hi.x, b.x), r_max(hi.y, b.y), r_max(hi.z, b.z));
         set |= (uint32_t)1 << i;
     }
-    s->bound_set = 0;
+    s->cull.bound_set = 0;
     if ((set & (set - 1)) == 0) /* fewer than two spheres: nothing to gain */
         return;
     vec3 c = v3_add(
@@ -311,16 +311,16 @@ static void scene_bound(rt_scene *s)
     /* rounded up: the square root's rounding (half a step fixed, 2^-24 relative float) */
     radius = r_add(r_add(radius, PREP_SLACK_10), r_shr(radius, 14));
     rt_object b = {.kind = RT_SPHERE, .center = c, .radius = radius};
-    s->bound_set = set;
-    s->bound_center = c;
-    s->bound_radius = radius;
+    s->cull.bound_set = set;
+    s->cull.bound_center = c;
+    s->cull.bound_radius = radius;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
-        s->bound_shadow_cull[l] = l < s->nlights
+        s->cull.bound_shadow_cull[l] = l < s->nlights
             ? r_cull(scene_cull(&b, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), 0))
             : 0;
 }
 
-/* The quadrants of light l's shadow rays (rt_scene.shadow_plane, shadow_quad), given each
+/* The quadrants of light l's shadow rays (rt_scene.cull.shadow_plane, shadow_quad), given each
  * object's cone[] for the light (scene_cull: the sine sn of the half-angle around the direction
  * u_c from the light to the centre outside which its rejection refuses a ray, 0 for none).
  *
@@ -342,12 +342,15 @@ static __attribute__((cold, noinline)) void scene_shadow_quads(rt_scene *s, int 
                                                                const real cone[])
 {
     const dir3 zero = {0, 0, 0};
-    s->shadow_plane[l][0] = s->shadow_plane[l][1] = zero;
+    dir3 *plane = s->cull.shadow_plane[l];
+    uint32_t *quad = s->cull.shadow_quad[l];
+    for (int j = 0; j < 2; j++)
+        plane[j] = zero;
     for (int q = 0; q < 4; q++)
-        s->shadow_quad[l][q] = 0xFFFFFFFFu;
+        quad[q] = 0xFFFFFFFFu;
     vec3 lp = s->lights[l].pos;
-    vec3 w = v3_sub(s->bound_center, lp);
-    if (!s->bound_set || v3_is_zero(w))
+    vec3 w = v3_sub(s->cull.bound_center, lp);
+    if (!s->cull.bound_set || v3_is_zero(w))
         return;
     dir3 a = d3_norm(w, 0), across = {0, U_ONE, 0};
     unit ay = d3_dot(a, across);
@@ -359,7 +362,7 @@ static __attribute__((cold, noinline)) void scene_shadow_quads(rt_scene *s, int 
         n[j] = d3_norm(v3_add(v3(u_to_real(p0.x), u_to_real(p0.y), u_to_real(p0.z)),
                               v3(u_to_real(p1s.x), u_to_real(p1s.y), u_to_real(p1s.z))),
                        0);
-        s->shadow_plane[l][j] = n[j];
+        plane[j] = n[j];
     }
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
@@ -374,7 +377,7 @@ static __attribute__((cold, noinline)) void scene_shadow_quads(rt_scene *s, int 
             int off = un > lim ? 0 : un < r_neg(lim) ? 1 : -1;
             for (int q = 0; q < 4 && off >= 0; q++)
                 if (((q >> j) & 1) == off)
-                    s->shadow_quad[l][q] &= ~((uint32_t)1 << i);
+                    quad[q] &= ~((uint32_t)1 << i);
         }
     }
 }
@@ -386,7 +389,7 @@ static real scene_cos_of(real sn)
     return r_sub(r_sqrt_w(w_sub(w_sq(R_ONE), w_sq(sn))), r_muli(R_LSB, 2));
 }
 
-/* Light l's occluders per object (rt_scene.occ_of), given each object's cone[] for the light
+/* Light l's occluders per object (rt_scene.cull.occ_of), given each object's cone[] for the light
  * (scene_cull: the sine sn of the half-angle around the direction u_c from the light to the
  * centre outside which its shadow-ray rejection refuses a ray, 0 for none).
  *
@@ -476,11 +479,11 @@ static __attribute__((cold, noinline)) void scene_shadow_pairs(rt_scene *s, int 
                     occ &= ~((uint32_t)1 << b);
             }
         }
-        s->occ_of[l][a] = occ;
+        s->cull.occ_of[l][a] = occ;
     }
 }
 
-/* The secondary rays' candidate sets (rt_scene.ray_oct, ray_in), for rays from hit points of
+/* The secondary rays' candidate sets (rt_scene.cull.ray_oct, ray_in), for rays from hit points of
  * each sphere A (centre c_A, radius r_A).
  *
  * trace_secondary casts them from p_out = p + R_EPS_OFFSET n or p_in = p - R_EPS_OFFSET n, p a
@@ -541,14 +544,14 @@ scene_ray_sets(rt_scene *s)
     const real delta = scene_delta();
     int last_plane = -1;
     for (int l = 0; l < RT_MAX_LIGHTS; l++)
-        s->dark_inside[l] = 0;
+        s->cull.dark_inside[l] = 0;
     for (int i = 0; i < RT_MAX_OBJECTS; i++) {
-        s->dark_r[i] = 0;
+        s->cull.dark_r[i] = 0;
         /* a plane's rays mirrored off its front: every object but itself (trace_secondary) */
         int plane = i < s->nobjects && s->objects[i].kind == RT_PLANE;
         for (int q = 0; q < 8; q++)
-            s->ray_oct[i][q] = plane ? ~((uint32_t)1 << i) : 0xFFFFFFFFu;
-        s->ray_in[i] = 0xFFFFFFFFu;
+            s->cull.ray_oct[i][q] = plane ? ~((uint32_t)1 << i) : 0xFFFFFFFFu;
+        s->cull.ray_in[i] = 0xFFFFFFFFu;
         if (plane)
             last_plane = i;
     }
@@ -560,14 +563,14 @@ scene_ray_sets(rt_scene *s)
         real ma = r_add_in(PREP_SLACK_10, r_shr(r_add_in(rho, oa->radius), 12));
         /* dark_r, dark_inside (the proof above) */
         real mi = r_add_in(PREP_SLACK_10, r_shr(oa->radius, U_LEN_ERR_SHIFT - 4));
-        s->dark_r[a] = oa->radius > mi ? r_add_in(oa->radius, r_neg_in(mi)) : 0;
+        s->cull.dark_r[a] = oa->radius > mi ? r_add_in(oa->radius, r_neg_in(mi)) : 0;
         for (int l = 0; l < s->nlights; l++) {
             real dl = r_sqrt_w(w_len2(v3_sub_in(s->lights[l].pos, oa->center)));
             real ml = r_add_in(r_add_in(r_muli(R_EPS_OFFSET, 2), PREP_SLACK_6),
                                r_shr(r_add_in(dl, oa->radius), U_LEN_ERR_SHIFT - 8));
-            if ((s->occluders[l] >> a & 1) && s->dark_r[a] > 0 &&
+            if ((s->occluders[l] >> a & 1) && s->cull.dark_r[a] > 0 &&
                 dl > r_add_in(r_add_in(oa->radius, ml), r_muli(R_LSB, 2)))
-                s->dark_inside[l] |= (uint32_t)1 << a;
+                s->cull.dark_inside[l] |= (uint32_t)1 << a;
         }
         for (int b = 0; b < s->nobjects; b++) {
             const rt_object *ob = &s->objects[b];
@@ -592,9 +595,9 @@ scene_ray_sets(rt_scene *s)
             uint32_t bit = (uint32_t)1 << b;
             for (int q = 0; q < 8; q++)
                 if (!(keep >> q & 1))
-                    s->ray_oct[a][q] &= ~bit;
+                    s->cull.ray_oct[a][q] &= ~bit;
             if (b > last_plane && w_len2(v) > w_sq(r_add_in(reach, ma)))
-                s->ray_in[a] &= ~bit;
+                s->cull.ray_in[a] &= ~bit;
         }
     }
 }
@@ -645,29 +648,31 @@ void rt_scene_prepare(rt_scene *s)
             (m->tex.kind != RT_TEX_CHECKER || m->tex.color2.x != m->diffuse.x ||
              m->tex.color2.y != m->diffuse.y || m->tex.color2.z != m->diffuse.z);
     }
-    s->near_lights = 0;
+    s->cull.near_lights = 0;
     real cone[RT_MAX_LIGHTS][RT_MAX_OBJECTS];
     for (int l = 0; l < s->nlights; l++)
         for (int i = 0; i < s->nobjects; i++) {
             const rt_object *o = &s->objects[i];
             if (scene_light_near(o, s->lights[l].pos))
-                s->near_lights |= 1u << l;
+                s->cull.near_lights |= 1u << l;
             cone[l][i] = 0;
-            s->shadow_cull[l][i] = o->kind == RT_SPHERE
+            s->cull.shadow_cull[l][i] = o->kind == RT_SPHERE
                 ? r_cull(scene_cull(o, s->lights[l].pos, r_muli(R_EPS_OFFSET, 2), &cone[l][i]))
                 : 0;
         }
-    s->eye_at = s->camera.eye;
-    s->plane_set = 0;
+    s->cull.eye_at = s->camera.eye;
+    s->cull.plane_set = 0;
     for (int i = 0; i < s->nobjects; i++) {
         const rt_object *o = &s->objects[i];
-        s->eye_l[i] = v3_sub_in(o->center, s->eye_at); /* as the sphere test forms it */
-        s->eye_cone[i] = 0;
-        s->eye_cull[i] = o->kind == RT_SPHERE ? scene_cull(o, s->eye_at, 0, &s->eye_cone[i]) : 0;
+        s->cull.eye_l[i] = v3_sub_in(o->center, s->cull.eye_at); /* as the sphere test forms it */
+        s->cull.eye_cone[i] = 0;
+        s->cull.eye_cull[i] =
+            o->kind == RT_SPHERE ? scene_cull(o, s->cull.eye_at, 0, &s->cull.eye_cone[i]) : 0;
         /* a plane's signed distance from the eye, as plane_intersect forms it */
         if (o->kind == RT_PLANE)
-            s->plane_set |= (uint32_t)1 << i;
-        s->eye_num[i] = o->kind == RT_PLANE ? r_sub(o->offset, v3_dot_d(s->eye_at, o->normal)) : 0;
+            s->cull.plane_set |= (uint32_t)1 << i;
+        s->cull.eye_num[i] =
+            o->kind == RT_PLANE ? r_sub(o->offset, v3_dot_d(s->cull.eye_at, o->normal)) : 0;
     }
     scene_bound(s);
     for (int l = 0; RT_SHADOW_SETS && l < s->nlights; l++)

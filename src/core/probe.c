@@ -1,5 +1,5 @@
 /* probe.c: probe mode: a point that splitting a square adds is probed (its primary hit and checker cell, no shading) and shaded in full only where its neighbours cannot give its colour. */
-#include "rt.h"
+#include "rt_local.h"
 
 /* Do samples a and b (of one record) have contributions within thr8 of each other at every
  * stored node? */

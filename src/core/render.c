@@ -1,7 +1,7 @@
 /* render.c: whole frames or horizontal bands of them: every pixel traced (full mode), or adaptively subsampled. */
 #include <string.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 /* `pixels` is the memory of the frame's pixel row py0 (0 for a whole frame). */
 static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,

@@ -1,5 +1,5 @@
 /* shapes.c: the per-type interface (ray intersection, surface normal) and the tracer's loops over objects. */
-#include "rt.h"
+#include "rt_local.h"
 
 /* Always inlined into the loops over objects below (rt_intersect gets an out-of-line copy). */
 #define SHAPES_INLINE static inline __attribute__((always_inline))
@@ -188,7 +188,7 @@ int rt_nearest_from(const rt_scene *s, vec3 org, dir3 d, real tmax, int from, ui
 {
     int need;
     uint32_t all = rt_ray_cand(s, from, d, shapes_in_scene(s, cand), &need);
-    cand = need >= 0 ? all & s->ray_in[need] : all;
+    cand = need >= 0 ? all & s->cull.ray_in[need] : all;
     for (;;) {
         int id = shapes_nearest(s, org, d, tmax, cand, t);
         if (id == need || cand == all)
@@ -210,7 +210,7 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
      * earlier object is no comparison of distances). */
     uint32_t first = cand & (0 - cand);
     int last = -1;
-    if ((first & s->plane_set) && !(cand & s->plane_set & ~first)) {
+    if ((first & s->cull.plane_set) && !(cand & s->cull.plane_set & ~first)) {
         last = __builtin_ctz(first);
         cand &= ~first;
     }
@@ -222,15 +222,15 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
         int h;
         if (o->kind == RT_SPHERE) {
             /* l = centre - eye is the frame's; a ray that passes clearly wide of the sphere
-             * is rejected from tca alone (rt_scene.eye_cull), before the perpendicular. */
-            vec3 l = s->eye_l[i];
+             * is rejected from tca alone (rt_scene.cull.eye_cull), before the perpendicular. */
+            vec3 l = s->cull.eye_l[i];
             real tca = v3_dot_d_in(l, d);
-            wide k = s->eye_cull[i];
+            wide k = s->cull.eye_cull[i];
             if (k > 0 && (tca <= 0 || w_sq(tca) < k))
                 continue;
             h = sphere_hit(o, l, tca, d, tmax, 0, &hit);
         } else {
-            h = plane_hit(o, s->eye_num[i], d, tmax, 1, &hit); /* tmax <= R_T_MAX */
+            h = plane_hit(o, s->cull.eye_num[i], d, tmax, 1, &hit); /* tmax <= R_T_MAX */
         }
         if (h) {
             tmax = hit;
@@ -239,7 +239,8 @@ int rt_nearest_primary(const rt_scene *s, dir3 d, uint32_t cand, real *t)
     }
     real num;
     unit den;
-    if (last >= 0 && plane_meets(&s->objects[last], s->eye_num[last], d, R_T_MAX, 1, &num, &den) &&
+    if (last >= 0 &&
+        plane_meets(&s->objects[last], s->cull.eye_num[last], d, R_T_MAX, 1, &num, &den) &&
         (best < 0 || !r_div_u_above(num, den, tmax))) {
         tmax = r_div_u_pos(num, den);
         best = last;
@@ -253,7 +254,7 @@ int rt_plane_primary(const rt_scene *s, int id, dir3 d, real *t)
 {
     real num;
     unit den;
-    if (!plane_meets(&s->objects[id], s->eye_num[id], d, R_T_MAX, 1, &num, &den))
+    if (!plane_meets(&s->objects[id], s->cull.eye_num[id], d, R_T_MAX, 1, &num, &den))
         return 0;
     *t = r_div_u_pos(num, den);
     return 1;
@@ -292,20 +293,20 @@ int rt_occluded(const rt_scene *s, rt_stats *st, int light, uint32_t occ, const 
 {
     const dir3 dd = *d;
     const dotpart lpd = v3_dot_part(s->lights[light].pos, dd);
-    const rcull *cull = s->shadow_cull[light];
+    const rcull *cull = s->cull.shadow_cull[light];
     uint32_t tested = 0;
     int blocked = 0;
     /* A segment the bounding sphere's rejection covers misses every sphere inside it. */
-    rcull kb = s->bound_shadow_cull[light];
-    if (kb != 0 && (occ & s->bound_set) &&
-        r_cull_rejects(v3_dot_d_from(s->bound_center, dd, lpd), kb))
-        occ &= ~s->bound_set;
+    rcull kb = s->cull.bound_shadow_cull[light];
+    if (kb != 0 && (occ & s->cull.bound_set) &&
+        r_cull_rejects(v3_dot_d_from(s->cull.bound_center, dd, lpd), kb))
+        occ &= ~s->cull.bound_set;
     if (!occ)
         return 0;
     /* Only the objects that can block a ray of its quadrant (rt_scene_prepare). */
     if (RT_SHADOW_SETS) {
-        const dir3 *pl = s->shadow_plane[light];
-        occ &= s->shadow_quad[light][d3_below(dd, pl[0]) | d3_below(dd, pl[1]) << 1];
+        const dir3 *pl = s->cull.shadow_plane[light];
+        occ &= s->cull.shadow_quad[light][d3_below(dd, pl[0]) | d3_below(dd, pl[1]) << 1];
     }
     /* Set bits in increasing order (the objects' order); counted once, after the loop. The
      * lowest bit's clz j gives object 31 - j. */

@@ -1,6 +1,6 @@
 /* texture.c: procedural textures: the diffuse colour of a material at a point in space. */
 #include "noise.h"
-#include "rt.h"
+#include "rt_local.h"
 
 rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real footprint,
                           rt_stats *st, uint8_t *cell)

@@ -1,7 +1,7 @@
 /* trace.c: Whitted ray tracing: nearest hit, hard shadows, Phong shading, reflection, refraction. */
 #include <stddef.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 /* State of one traced image point, threaded through the recursion. */
 typedef struct trace_ctx {
@@ -24,7 +24,7 @@ typedef struct trace_ctx {
     uint32_t mirror_cand;
     /* Adaptive and probe mode: 1 gives a primary hit on a plane with a two-tone checker its
      * other tone's colour, and one on a noise texture its lighting factors (rt_sample.alt,
-     * alt_known 1 or 2: trace_alt_mid) */
+     * RT_ALT_TONE or RT_ALT_NOISE: trace_alt_mid) */
     int alt;
     const rt_local *local; /* the primary hit's local part, given (rt_trace_pixel_local), or NULL */
 } trace_ctx;
@@ -91,12 +91,12 @@ typedef rt_hit trace_hit;
  * ambient term's (scene ambient x the material's ambient) plus light colour x n.l for each
  * light that lights the point; the other tone b' then adds (b' - b) x E to the colour (up to
  * rounding), whatever the highlights and the secondary rays add. That goes into the sample's
- * colour, with alt_known 1, until trace_point has the colour itself (trace_alt_end). E is within
+ * colour, with RT_ALT_TONE, until trace_point has the colour itself (trace_alt_end). E is within
  * [0, 65] and |b' - b| <= 1 (docs/numerics.md, Colours): the products and sums are in range
  * (the unchecked forms, *_in). With `noise` (a noise texture, b its colour at the hit): the
  * colour is b x E + B, and for interpolating E and B apart (ss_noise) the sample keeps E in
  * rt_sample.alt, as the bytes of E / 2 (units of 2/255; nothing is kept for an E above 2), and
- * (0 - b) x E in its colour, alt_known 2: trace_alt_end then gives B. Out of line: off the usual
+ * (0 - b) x E in its colour, RT_ALT_NOISE: trace_alt_end then gives B. Out of line: off the usual
  * path. */
 static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hit *h,
                                                     unsigned lights, int noise)
@@ -120,7 +120,7 @@ static __attribute__((noinline)) void trace_alt_mid(trace_ctx *c, const trace_hi
     sm->color = v3(r_mul_in(r_add_in(b2.x, r_neg_in(h->base.x)), e.x),
                    r_mul_in(r_add_in(b2.y, r_neg_in(h->base.y)), e.y),
                    r_mul_in(r_add_in(b2.z, r_neg_in(h->base.z)), e.z));
-    sm->alt_known = (uint8_t)(1 + noise);
+    sm->alt_known = (uint8_t)(RT_ALT_TONE + noise); /* RT_ALT_NOISE on a noise texture */
 }
 
 /* The sample's other tone (rt_sample.alt; on a noise texture its B, rt_sample.hits[1]) into `to`
@@ -254,7 +254,7 @@ static inline rt_color trace_secondary(trace_ctx *c, const trace_hit *h, real we
          * (A sphere's own test is kept: at the scene's limits rt-fixed16's hit points can
          * be off by more than that. Every object is tested when effects are forced.) Off a
          * sphere, from inside it when seen from inside. */
-        int from = sphere ? 2 * h->id + inside : !inside && !s->forced ? 2 * h->id : -1;
+        int from = sphere ? 2 * h->id + inside : !inside && !s->cull.forced ? 2 * h->id : -1;
         rt_color rc =
             trace_ray(c, TRACE_RAY_ARG(h->p_out), TRACE_RAY_NEW(dir3, d3_reflect_k(d, n, dk)),
                       level + 1, wr, travelled, from);
@@ -343,7 +343,7 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         for (int i = 0; i < s->nlights; i++)
             lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
         if (level == 0 && c->alt && m->tex.active) {
-            if (cell && (s->plane_set >> id & 1))
+            if (cell && (s->cull.plane_set >> id & 1))
                 trace_alt_mid(c, &h, lights, 0); /* a plane with a two-tone checker */
             else if (rt_scene_has(s, RT_FX_NOISE) && m->tex.kind != RT_TEX_CHECKER)
                 trace_alt_mid(c, &h, lights, 1); /* a noise texture */
@@ -405,7 +405,7 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
                    .alt = alt,
                    .local = loc};
     out->head = 0; /* nhits, lights, cell; flags, which the callers set after */
-    out->alt_known = 0;
+    out->alt_known = RT_ALT_NONE;
     dir3 d;
     if (RT_COMPILED_PROBE && pri) {
         if (pri->id == RT_PRIMARY_UNKNOWN)
@@ -418,12 +418,12 @@ static inline __attribute__((always_inline)) void trace_point(const rt_scene *s,
     c.depth = p->depth < s->reach_depth ? p->depth : s->reach_depth;
     rt_color col = trace_ray(&c, TRACE_RAY_ARG(v->eye), TRACE_RAY_ARG(d), 0, R_ONE, 0, -1);
     if (out->alt_known) {
-        if (out->alt_known == 1) /* the primary hit: a plane with a two-tone checker */
+        if (out->alt_known == RT_ALT_TONE) /* the primary hit: a plane with a two-tone checker */
             trace_alt_end(out->alt, out, col);
         else if (out->nhits == 1) /* a noise texture, no secondary ray: B */
             trace_alt_end(out->hits[1].contrib, out, col);
         else
-            out->alt_known = 0;
+            out->alt_known = RT_ALT_NONE;
     }
     out->color = col;
 }

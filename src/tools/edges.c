@@ -5,7 +5,7 @@
 
 #include "cli.h"
 #include "platform.h"
-#include "rt.h"
+#include "rt_local.h"
 #include "scn_parse.h"
 
 int app_main(int argc, char **argv)
