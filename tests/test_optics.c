@@ -10,7 +10,7 @@
 
 #include <cmocka.h>
 
-#include "rt.h"
+#include "rt_local.h"
 
 #if REAL_FIXED
 static real from_d(double x) { return (real)llround(x * 65536.0); }
