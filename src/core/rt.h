@@ -153,7 +153,16 @@ typedef struct rt_view {
     uint32_t cull_cols[RT_VIEW_TILES], cull_rows[RT_VIEW_TILES];
     int mirror_plane;
     uint32_t mirror_cols[RT_VIEW_TILES], mirror_rows[RT_VIEW_TILES];
+    /* Small spheres (rt_view_cull): bit i set when sphere i's outline on the frame lies within
+     * the pixels box[i] (x0, y0, x1, y1, inclusive), under RT_SMALL_MAX a side. Such a sphere
+     * can fall between the corners of a square, where no criterion sees it: adaptive
+     * subsampling splits a square that overlaps its box and has no corner on it. */
+    uint32_t small;
+    int16_t box[RT_MAX_OBJECTS][4];
 } rt_view;
+
+/* The side, in pixels, under which a sphere's box makes it small (rt_view.small). */
+#define RT_SMALL_MAX 32
 
 /* One node of the ray tree as adaptive subsampling compares it. */
 typedef struct rt_hit_rec {

@@ -164,8 +164,13 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         st->squares[li]++;
         const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
+        int small = 0; /* a small sphere between the corners: split, no shortcut fills it */
+        if (why == RT_SPLIT_NONE && c->view->small && ss_small_missed(c->view, k, x0, y0, w, h)) {
+            why = RT_SPLIT_OBJECT;
+            small = 1;
+        }
         if (why != RT_SPLIT_NONE) {
-            if (ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
+            if (!small && ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
                 return;
             st->split[li]++;
             st->split_by[why]++;
