@@ -286,9 +286,24 @@ void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t
  * or of pixels in full mode). Bands write disjoint pixels and may run at the same time, each
  * with its own `work` and `stats`; together they give rt_render's frame byte for byte.
  * `traced` must be cleared before the first band (bands add bits to it atomically). Both
- * bands trace the corners on the edge between them: summed stats count those twice. */
+ * bands trace the corners on the edge between them: summed stats count those twice
+ * (rt_render_band_edges does not). */
 void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                     int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands);
+
+/* Bands that trace no point twice (adaptive and probe mode): the top-level corner rows on the
+ * bands' edges, nbands + 1 rows of rt_render_edge_size(p, width, nbands) bytes in `edges`
+ * (0 in full mode), are traced first, row e (0..nbands, in any order, at the same time) by
+ * rt_render_edge; then rt_render_band_edges renders band `band` as rt_render_band does,
+ * taking its first and last corner rows from `edges` instead of tracing them. With nbands at
+ * most rt_render_band_count, the frame then traces every point rt_render traces, once: the
+ * same picture, the same summed stats, on any number of bands. */
+unsigned long rt_render_edge_size(const rt_params *p, int width, int nbands);
+void rt_render_edge(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *stats,
+                    void *edges, uint8_t *traced, int e, int nbands);
+void rt_render_band_edges(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                          int stride, rt_stats *stats, void *work, const void *edges,
+                          uint8_t *traced, int band, int nbands);
 
 /* The most bands a frame of `height` rows splits into (more bands leave some empty). */
 int rt_render_band_count(const rt_params *p, int height);

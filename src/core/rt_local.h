@@ -389,10 +389,11 @@ enum rt_band_memory {
     RT_BAND_KEEP   /* only the band, and `work` holds its top row of corners (keep) */
 };
 
-/* The adaptive and probe modes of rt_render_band and rt_render_band_into (subsample.c). */
+/* The adaptive and probe modes of rt_render_band, rt_render_band_edges and
+ * rt_render_band_into (subsample.c); edges: rt_render_edge's rows, or NULL. */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands, enum rt_band_memory mem);
+                        int nbands, enum rt_band_memory mem, const void *edges);
 
 /* Probe mode (probe.c), for a point (x, y) that splitting a square adds in the middle of one
  * of its edges, from sample a to sample b (the point at fraction t from a to b; span: the
