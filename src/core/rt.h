@@ -167,7 +167,8 @@ typedef struct rt_view {
 /* One node of the ray tree as adaptive subsampling compares it. */
 typedef struct rt_hit_rec {
     uint8_t object;     /* object index, or RT_NO_OBJECT */
-    uint8_t level;      /* recursion level, 0 = primary */
+    uint8_t level;      /* recursion level, 0 = primary, in the low 4 bits; at a secondary hit
+                           on a checker its cell in the high 4 (trace.c: trace_cell_code) */
     uint8_t contrib[3]; /* this node's local colour times its weight in the pixel, 0..255 */
 } rt_hit_rec;
 
