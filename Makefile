@@ -6,6 +6,8 @@
 #                   headless into build/out/intro/ with progress lines, fps, fixed vs float stills)
 #   make test       set up if needed, build everything and run the test suite (tests/run.sh)
 #   make check      the fast inner loop: the unit tests and a few host frames (tests/run.sh unit frames)
+#   make quality    adaptive and probe mode against full mode on every example and hard scene,
+#                   both builds: a table, and docs/quality.md
 #   make bench      the intro's frames per second per platform, one table in docs/bench.md: desktop
 #                   (320x240 and 640x480, both builds, 1 thread and every core), the ARM926 and
 #                   the Cortex-M3 and M0 under QEMU (instructions per frame, fps at 200, 50, 16 and
@@ -95,7 +97,7 @@ APP_SRCS := src/app/app.c src/app/cli.c src/app/play.c src/app/frame.c src/scene
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
 SDL_LIBS = $(shell pkg-config --libs sdl2)
-TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability
+TESTS := test_numeric test_shapes test_noise test_subsample test_scene test_stability test_optics
 # Tests of the fixed-point format itself, built in san-fixed and san-fixed16.
 FIXED_TESTS := test_format
 TEST_SRCS := $(patsubst %,tests/%.c,$(TESTS) $(FIXED_TESTS))
@@ -117,7 +119,7 @@ SAN_PROGS := $(foreach v,san-float san-fixed,$(BUILD)/$(v)/rt $(addprefix $(BUIL
              $(BUILD)/san-fixed16/rt $(foreach v,san-fixed san-fixed16,$(addprefix $(BUILD)/$(v)/,$(FIXED_TESTS))) \
              $(addprefix $(BUILD)/san-fixed-sd/,rt $(SOFT_DIVIDE_TESTS))
 
-.PHONY: all run test check bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
+.PHONY: all run test check quality bench bench-demo tradeoff bench-subsample bench-effects bench-modes scene-programs docs-images stress clean distclean setup san \
         setup-arm setup-test setup-gui arm arm-file-flags qemu qemu-frames qemu-bench qemu-profile test-cycles arm-text-order fuzz soak fuzz-progs m3 qemu-m3 qemu-m3-frames m0 qemu-m0-frames
 all: $(HOST_PROGS)
 san: $(SAN_PROGS)
@@ -544,6 +546,11 @@ bench-effects: setup
 bench-modes: setup-test setup-arm
 	@$(MAKE) -s --no-print-directory all $(ARM_ELFS)
 	@tests/bench_modes.sh
+
+# Adaptive and probe mode against full mode on every scene; writes docs/quality.md (tests/quality.sh).
+quality: setup
+	@$(MAKE) -s --no-print-directory all
+	@tests/quality.sh --doc docs/quality.md
 
 STRESS_RAYS ?= 20000000
 stress: setup

@@ -70,10 +70,16 @@ static void fz_render(uint64_t h)
             if (fz_pixels[y * FZ_W + x] > 0xFFFFFFu)
                 fz_fail("pixel out of range", x, y);
     /* The primary rays' tile candidates and the mirror candidates (rt_view_cull) change no
-     * pixel: the same frame again with them. */
+     * pixel: the same frame with them and with every set full (the small spheres rt_view_cull
+     * marks, rt_view.small, are the view's in both: they decide splits, not candidates). */
     static uint32_t plain[FZ_W * FZ_H];
-    memcpy(plain, fz_pixels, sizeof plain);
     rt_view_cull(&v, &fz_scene);
+    rt_view vp = v;
+    vp.mirror_plane = -1;
+    for (int i = 0; i < RT_VIEW_TILES; i++)
+        vp.cull_cols[i] = vp.cull_rows[i] = vp.mirror_cols[i] = vp.mirror_rows[i] = 0xFFFFFFFFu;
+    rt_render(&fz_scene, &vp, &p, fz_pixels, FZ_W, &stats, fz_work, fz_traced);
+    memcpy(plain, fz_pixels, sizeof plain);
     rt_stats culled = {0};
     rt_render(&fz_scene, &v, &p, fz_pixels, FZ_W, &culled, fz_work, fz_traced);
     for (int y = 0; y < hgt; y++)

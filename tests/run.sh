@@ -16,7 +16,7 @@ rm -rf "$T" && mkdir -p "$T"
 DEMO="--scene scenes/demo.scene"
 
 PARTS=(layout unit softdiv frames sampling settings multiframe cli scenes numerics scene_errors fuzz memory
-       fixed16 platforms tools faults)
+       fixed16 platforms tools faults quality)
 [ $# -gt 0 ] && PARTS=("$@")
 # The parts run in this shell, one after the other: they keep off RUN_*, passed and failed.
 for RUN_PART in "${PARTS[@]}"; do

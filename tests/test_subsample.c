@@ -1012,10 +1012,10 @@ static void test_adaptive_reference(void **state)
  * pixels next to a pixel of another record (rt_probe_same) that the split criteria tell apart
  * were shaded or probed, that no pixel is off by more than
  * max_err levels from the full render (exact_edges: pixels on those edges not at all), and
- * that probe mode shaded no more points than adaptive mode and probed some. Returns the shaded
- * points. */
+ * that probe mode shaded no more points than adaptive mode and (probed: 1) probed some or (0)
+ * none. Returns the shaded points. */
 static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_percent,
-                            const char *name, int unprepared)
+                            const char *name, int unprepared, int probed)
 {
     rt_scene_prepare(s);
     if (unprepared) /* the view's eye not the prepared one: no shadow pixels */
@@ -1068,7 +1068,7 @@ static uint32_t check_probe(rt_scene *s, int exact_edges, int max_err, int min_p
     assert_true(followed * 100 >= edge * min_percent);
     assert_true(worst <= max_err);
     assert_true(sp.rays_primary <= sa.rays_primary);
-    assert_true(sp.probes > 0);
+    assert_true(probed ? sp.probes > 0 : sp.probes == 0);
     return sp.rays_primary;
 }
 
@@ -1088,20 +1088,20 @@ static void wall_scene(rt_scene *s)
 }
 
 /* Flat-shaded surfaces (no light: each object one colour) cut by a straight edge, a slanted wall
- * standing on the floor: both sides come out exactly, with far fewer points shaded. */
+ * standing on the floor: both sides come out exactly, with fewer points shaded. */
 static void test_probe_straight_edge(void **state)
 {
     (void)state;
     static rt_scene s;
     wall_scene(&s);
-    uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge", 0);
+    uint32_t shaded = check_probe(&s, 1, 0, 100, "probe: straight edge", 0, 1);
     rt_stats sa = {0};
     rt_params pa = {
         .depth = s.depth, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD};
     rt_view v;
     rt_view_init(&v, &s.camera, W, H);
     rt_render(&s, &v, &pa, adpx, W, &sa, work, NULL);
-    assert_true(shaded * 2 <= sa.rays_primary); /* at most half of adaptive's */
+    assert_true(shaded * 8 <= sa.rays_primary * 7); /* at most 7/8 of adaptive's */
 }
 
 /* The shadow of a sphere on a matte floor: the shadow's edge followed to the pixel (by full
@@ -1113,12 +1113,12 @@ static void test_probe_shadow_edge(void **state)
     static rt_scene s;
     shadow_scene(&s);
     /* split (shadow pixels off: those are test_shadow_pixels') */
-    check_probe(&s, 0, 32, 100, "probe: shadow edge", 1); /* twice the split threshold */
+    check_probe(&s, 0, 32, 100, "probe: shadow edge", 1, 1); /* twice the split threshold */
 }
 
 /* A sphere seen only in a mirror floor: the reflected outline is followed to the pixel where
- * adaptive mode follows it (90%: by full shades, a ray tree is not probed); outlines seen
- * directly are probed. */
+ * adaptive mode follows it (90%: by full shades, a ray tree is not probed); the sphere's own
+ * outline lies against the mirror, which casts a secondary ray: nothing is probed. */
 static void test_probe_reflected_edge(void **state)
 {
     (void)state;
@@ -1127,7 +1127,7 @@ static void test_probe_reflected_edge(void **state)
     s.lights[0].pos = vd(0, 20, 20);
     s.camera = (rt_camera){vd(0, 3, 6), vd(0, 0, 0), vd(0, 1, 0), from_d(40)};
     /* (its floor shows the sphere's shadow too: split, shadow pixels off) */
-    check_probe(&s, 0, 64, 90, "probe: reflected edge", 1); /* what adaptive mode misses too */
+    check_probe(&s, 0, 64, 90, "probe: reflected edge", 1, 0); /* what adaptive mode misses too */
 }
 
 /* Pixel (x, y) traced as probe mode shades it (its record, its flags: rt_probe_opaque). */
@@ -1144,12 +1144,12 @@ static rt_sample probe_shade(const rt_scene *s, const rt_view *v, int x, int y)
 }
 
 /* rt_probe_point on one edge, against what full shades give. The straight edge (flat-shaded
- * floor and wall): an edge of 4 pixels across the outline gives its middle the record and
- * colour of the end it matches (its own full shade's), one of 8 is not probed (-1), and an
- * edge with both ends on one side gives the ends' colour mixed. The shadow scene: a lit point
- * between two ends in the shadow is shaded (0, a shadow ray cast) on an edge of 4 pixels, and on
- * one of 2 takes the ends' record with no ray. The mirror floor: ends whose ray trees differ are
- * not probed (-1). */
+ * floor and wall): an edge across the outline is not probed (-1: its ends' records differ), nor
+ * an edge of 4 pixels with both ends on one side, and an edge of 2 with both ends on one side
+ * gives the ends' colour mixed; a point of the other side between them is probed and shaded
+ * (0). The shadow scene: a lit point between two ends in the shadow is not probed on an edge of
+ * 4 pixels, and on one of 2 takes the ends' record with no ray. The mirror floor: ends whose ray
+ * trees differ are not probed (-1). */
 static void test_probe_point_edge(void **state)
 {
     (void)state;
@@ -1168,30 +1168,35 @@ static void test_probe_point_edge(void **state)
     }
     assert_true(x0 >= 0);
     {
-        rt_sample a = probe_shade(&s, &v, x0, y), b = probe_shade(&s, &v, x0 + 4, y),
-                  m = probe_shade(&s, &v, x0 + 2, y), out;
+        rt_sample a = probe_shade(&s, &v, x0, y), b = probe_shade(&s, &v, x0 + 4, y), out;
         rt_stats st = {0};
         rt_primary pri;
         assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 2, y, &a, &b, half, 4, &pri, &out),
-                         1);
-        assert_int_equal(st.probes, 1);
-        assert_true(rt_probe_same(&out, &m));
-        assert_int_equal(out.flags, RT_SAMPLE_PROBED);
-        assert_int_equal(rt_color_pixel(out.color), rt_color_pixel(m.color));
-        rt_sample b8 = probe_shade(&s, &v, x0 + 8, y);
-        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 4, y, &a, &b8, half, 8, &pri, &out),
                          -1);
-        assert_int_equal(st.probes, 1); /* not probed */
+        rt_sample m2 = probe_shade(&s, &v, x0 + 2, y);
+        const int same = m2.hits[0].object == a.hits[0].object; /* the outline: after x0 + 2 */
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 1 + 2 * same, y, same ? &m2 : &a,
+                                        same ? &b : &m2, half, 2, &pri, &out),
+                         -1);
+        assert_int_equal(st.probes, 0); /* not probed */
+        /* a point of the other side between two ends on one side: probed, then shaded */
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x0 + 4, y, &a, &a, half, 2, &pri, &out),
+                         0);
+        assert_int_equal(pri.id, b.hits[0].object); /* its primary hit, for the full shade */
+        assert_int_equal(st.probes, 1);
     }
     for (int x = 0; x + 4 < W; x++) { /* an edge on one side: the mixed colour */
-        rt_sample a = probe_shade(&s, &v, x, y), b = probe_shade(&s, &v, x + 4, y),
-                  m = probe_shade(&s, &v, x + 2, y), out;
+        rt_sample a = probe_shade(&s, &v, x, y), b = probe_shade(&s, &v, x + 2, y),
+                  m = probe_shade(&s, &v, x + 1, y), out;
         if (!rt_probe_same(&a, &b) || !rt_probe_same(&a, &m))
             continue;
         rt_stats st = {0};
         rt_primary pri;
-        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x + 2, y, &a, &b, half, 4, &pri, &out),
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x + 1, y, &a, &b, half, 4, &pri, &out),
+                         -1);
+        assert_int_equal(rt_probe_point(&s, &v, &st, thr8, x + 1, y, &a, &b, half, 2, &pri, &out),
                          1);
+        assert_int_equal(out.flags, RT_SAMPLE_PROBED);
         assert_int_equal(rt_color_pixel(out.color), rt_color_pixel(m.color)); /* flat */
         flat_ok = 1;
         break;
@@ -1218,10 +1223,8 @@ static void test_probe_point_edge(void **state)
         rt_stats st = {0};
         rt_primary pri;
         assert_int_equal(
-            rt_probe_point(&s, &v, &st, thr8, lit % W, lit / W, &a, &a, half, 4, &pri, &out), 0);
-        assert_true(st.rays_shadow > 0); /* the light test found the light */
-        assert_int_equal(pri.id, 0);     /* the primary hit, for the full shade */
-        st = (rt_stats){0};
+            rt_probe_point(&s, &v, &st, thr8, lit % W, lit / W, &a, &a, half, 4, &pri, &out), -1);
+        assert_int_equal(st.probes, 0);
         assert_int_equal(
             rt_probe_point(&s, &v, &st, thr8, lit % W, lit / W, &a, &a, half, 2, &pri, &out), 1);
         assert_int_equal(st.rays_shadow, 0);

@@ -45,6 +45,7 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
         k++;
     v->cull_shift = k;
     v->mirror_plane = -1;
+    v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
 }
@@ -64,9 +65,10 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
  * (units in Q2.30 or Q16.16, zz >= 1/4 to divide by); the range is widened by
  * 2^-10 + |a| 2^-10, which also covers tan_half's rounding and the rays' own directions (within
  * 2^-15 of their pixel's in either build). Pixel x lies at a = (2x + 1 - w) tan_half / h: the
- * pixels of the range, and one more either side, are kept. */
+ * pixels of the range, and one more either side, are kept; the first and last of them go into
+ * range[0] and range[1] (range[1] < range[0]: none in the frame). */
 VIEW_ONCE static void view_keep(rt_view *v, uint32_t *cols, uint32_t *rows, int axis, unit c,
-                                unit z, unit sn, unit zz, uint32_t bit)
+                                unit z, unit sn, unit zz, uint32_t bit, int16_t range[2])
 {
     int n = axis ? v->height : v->width, h = v->height, k = v->cull_shift;
     uint32_t *set = axis ? rows : cols;
@@ -84,6 +86,8 @@ VIEW_ONCE static void view_keep(rt_view *v, uint32_t *cols, uint32_t *rows, int 
         px[e] = e ? ((n - ia) >> 1) + 1 : ((ia + n - 1) >> 1) - 1;
     }
     int lo = px[0] < 0 ? 0 : px[0], hi = px[1] >= n ? n - 1 : px[1];
+    range[0] = (int16_t)lo;
+    range[1] = (int16_t)hi;
     for (int i = 0; i <= (n - 1) >> k; i++)
         if (hi < lo || i < (lo >> k) || i > (hi >> k))
             set[i] &= ~bit;
@@ -91,22 +95,31 @@ VIEW_ONCE static void view_keep(rt_view *v, uint32_t *cols, uint32_t *rows, int 
 
 /* Leaves `bit` out of the tiles of the sets `cols`/`rows` where no primary ray's direction lies
  * within the cone of sine `cone` around the direction of `axis` (from the eye), unless the cone
- * reaches 60 degrees off the view. */
-VIEW_ONCE static void view_cone(rt_view *v, uint32_t *cols, uint32_t *rows, vec3 axis, real cone,
-                                uint32_t bit)
+ * reaches 60 degrees off the view. Returns 1 and the pixels the cone covers, box[0..3] = x0, y0,
+ * x1, y1 (inclusive; x1 < x0 or y1 < y0: none), where it bounds them, else 0. */
+VIEW_ONCE static int view_cone(rt_view *v, uint32_t *cols, uint32_t *rows, vec3 axis, real cone,
+                               uint32_t bit, int16_t box[4])
 {
     dir3 l = d3_norm(axis, 0);
     unit z = d3_dot(l, v->fwd), sn = u_from_real(cone);
     unit zz = u_add(u_mul(z, z), u_neg(u_mul(sn, sn)));
     if (z <= 0 || zz < U(0.25))
-        return; /* the cone reaches 60 degrees off the view: no bound */
+        return 0; /* the cone reaches 60 degrees off the view: no bound */
+    int16_t range[2][2];
     for (int a = 0; a < 2; a++)
-        view_keep(v, cols, rows, a, d3_dot(l, a ? d3_neg(v->up) : v->right), z, sn, zz, bit);
+        view_keep(v, cols, rows, a, d3_dot(l, a ? d3_neg(v->up) : v->right), z, sn, zz, bit,
+                  range[a]);
+    box[0] = range[0][0];
+    box[1] = range[1][0];
+    box[2] = range[0][1];
+    box[3] = range[1][1];
+    return 1;
 }
 
 VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
 {
     v->mirror_plane = -1;
+    v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
     if (!rt_scene_at_eye(s, v->eye))
@@ -115,7 +128,11 @@ VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
         real cone = s->cull.eye_cone[i];
         if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->cull.eye_cull[i] <= 0)
             continue;
-        view_cone(v, v->cull_cols, v->cull_rows, s->cull.eye_l[i], cone, (uint32_t)1 << i);
+        int16_t *b = v->box[i]; /* the sphere's pixels: small when both sides are short */
+        if (view_cone(v, v->cull_cols, v->cull_rows, s->cull.eye_l[i], cone, (uint32_t)1 << i, b) &&
+            b[0] <= b[2] && b[1] <= b[3] && b[2] - b[0] < RT_SMALL_MAX &&
+            b[3] - b[1] < RT_SMALL_MAX)
+            v->small |= (uint32_t)1 << i;
     }
     /* The reflections off the frame's mirror: each sphere's mirror cone (rt_scene_mirror_cone)
      * is the set of primary directions whose reflected ray can hit it; a plane stays in every
@@ -127,7 +144,8 @@ VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
     for (int i = 0; i < s->nobjects; i++) {
         vec3 l;
         real cone = rt_scene_mirror_cone(s, pl, i, &l);
+        int16_t box[4]; /* not kept: small spheres are looked for among primary hits */
         if (cone > 0)
-            view_cone(v, v->mirror_cols, v->mirror_rows, l, cone, (uint32_t)1 << i);
+            view_cone(v, v->mirror_cols, v->mirror_rows, l, cone, (uint32_t)1 << i, box);
     }
 }

@@ -103,92 +103,36 @@ static int probe_primary(const rt_scene *s, const rt_view *v, int x, int y, rt_s
     return id;
 }
 
-/* Does a light that sample f has unlit (state 0) light the primary hit *pri (on object pri->id,
- * seen from the prepared eye) after all? The test trace_light makes for it (facing, n . l, one
- * shadow ray), without the shading: a lit wedge between shadows that the context's samples do
- * not see. */
-static int probe_lit(const rt_scene *s, const rt_view *v, rt_stats *st, const rt_primary *pri,
-                     const rt_sample *f)
-{
-    if (pri->id < 0)
-        return 0; /* the background: no surface, no light */
-    const rt_object *o = &s->objects[pri->id];
-    const vec3 p = v3_along_in(v->eye, pri->d, pri->t);
-    dir3 n = rt_shapes[o->kind].normal(o, p);
-    int inside = 0;
-    if (d3_dot(pri->d, n) > 0) {
-        n = d3_neg(n);
-        inside = 1;
-    }
-    const vec3 p_out = v3_along_in(p, n, R_EPS_OFFSET);
-    for (int i = 0; i < s->nlights; i++) {
-        dir3 l;
-        if (!rt_light_state(f, i) && rt_light_reach(s, st, i, pri->id, inside, &p, &p_out, n, &l))
-            return 1;
-    }
-    return 0;
-}
-
 int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y,
                    const rt_sample *a, const rt_sample *b, real t, int span, rt_primary *pri,
                    rt_sample *out)
 {
     pri->id = RT_PRIMARY_UNKNOWN;
-    /* 0. No probe where it cannot pay. Where the ends have one record whose contributions
-     * disagree, a point with their record gets their verdict and one with a new record is
-     * shaded. Where both ends cast secondary rays (and differ in them), the point's ray tree
-     * would take those rays again: its full shade but for the colour (a tree probe measured
-     * dearer than the shades it saved, docs/probe.md). On an edge longer than
-     * RT_PROBE_ONE_SPAN whose ends differ in primary object or cell, the point's record could
-     * be one end's at most, not enough there. (The caller has left out the edges whose ends
-     * are both opaque or disagree on a light: ss_probe_edge.) */
-    const int agreed = rt_probe_same(a, b); /* a point matching both needs no more test */
-    if (agreed ? !probe_agree(a, b, thr8)
-               : (a->nhits != 1 && b->nhits != 1) ||
-                (span > RT_PROBE_ONE_SPAN &&
-                 (a->hits[0].object != b->hits[0].object || a->cell != b->cell)))
+    /* Only the middle of an edge of 2 pixels whose ends have one record (primary object,
+     * cell and light states), with no secondary ray and no highlight or noise texture (not
+     * opaque), and contributions within the threshold. Anything more and the point's colour
+     * can hold what neither end shows: the limb of a sphere darkening towards its outline next
+     * to an end on the background, a shadow's edge reaching an outline between an end on the
+     * floor and one on a sphere, a reflection's or a refraction's own edges and shadows between
+     * two ends that see the same objects, the curve of a sphere's shading over 4 or 8 pixels.
+     * Adaptive mode traces such a point; so does this mode (-1: shaded where the squares
+     * below need it). */
+    if (span > 2 || a->nhits != 1 || (a->flags & RT_SAMPLE_OPAQUE) || !rt_probe_same(a, b) ||
+        !probe_agree(a, b, thr8))
         return -1;
 
-    /* 1. The primary hit and its checker cell; a noise texture there ends the probe. The
-     * primary ray and hit stay in *pri for the full shade. */
+    /* The primary hit and its checker cell: the ends' object and cell, or shaded in full from
+     * the primary hit the probe found (kept in *pri). */
     st->probes++;
     uint8_t cell;
-    int id = probe_primary(s, v, x, y, st, pri, &cell);
-    if (probe_noise(s, id))
-        return 0;
-    const unsigned m = (a->hits[0].object == id && a->cell == cell ? 1u : 0) |
-        (b->hits[0].object == id && b->cell == cell ? 2u : 0);
-    if (!m)
-        return 0; /* something new */
-
-    /* 2. The ends agree on every light: the matching end's light states are the point's, once
-     * a light it has unlit is found unlit at the point too (probe_lit, below: else a lit wedge
-     * between shadows lies there, and the point is shaded).
-     * Its ray tree is the matching end's where that casts no secondary ray, or where the two
-     * ends have one record; elsewhere it would take a probe of its own: shaded. */
-    const rt_sample *f = m & 1 ? a : b;
-    if (f->nhits > 1 && !agreed)
+    if (probe_primary(s, v, x, y, st, pri, &cell) != a->hits[0].object || cell != a->cell)
         return 0;
 
-    /* 3. Interpolation stands in where both ends have the point's record, or one next to it
-     * (an edge of at most RT_PROBE_ONE_SPAN pixels); where the colour depends on nothing the
-     * record misses (f is not opaque: f's record is the point's, and f is on no noise texture,
-     * having its primary object); and where the ends' contributions agree. A light f has unlit
-     * is tested at the point (probe_lit), but on an edge of 2 pixels whose ends both match: the
-     * point's neighbours a pixel away on either side, on its object and cell and unlit, are
-     * what the test would look between. (Where one end is another object, a shadow's edge can
-     * meet the outline between them: tested.) */
-    if ((m != 3u && span > RT_PROBE_ONE_SPAN) || (f->flags & RT_SAMPLE_OPAQUE) ||
-        (m == 3u && !agreed && !probe_agree(a, b, thr8)) ||
-        ((m != 3u || span > 2) && probe_lit(s, v, st, pri, f)))
-        return 0;
-
-    /* The record is f's, the colour interpolated from the matching ends'. f's other tone's
-     * colour of a two-tone checker (rt_sample.alt), where it has one, stands for the point's:
-     * the point can then be a corner of a texture square (ss_cells) as f can. */
-    *out = *f;
-    if (m == 3u)
-        out->color = probe_lerp(&a->color, &b->color, t);
+    /* The ends' record, the colour interpolated between them. a's other tone's colour of a
+     * two-tone checker (rt_sample.alt), where it has one, stands for the point's: the point
+     * can then be a corner of a texture square (ss_cells) as a can. */
+    *out = *a;
+    out->color = probe_lerp(&a->color, &b->color, t);
     out->flags = RT_SAMPLE_PROBED;
     return 1;
 }

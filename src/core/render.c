@@ -24,12 +24,12 @@ static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p,
 
 static void render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands, enum rt_band_memory mem)
+                        int nbands, enum rt_band_memory mem, const void *edges)
 {
     if (nbands < 1 || band < 0 || band >= nbands)
         return;
     if (p->mode != RT_MODE_FULL)
-        rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced, band, nbands, mem);
+        rt_render_adaptive(s, v, p, pixels, stride, stats, work, traced, band, nbands, mem, edges);
     else
         render_full(s, v, p, pixels,
                     mem == RT_BAND_FRAME ? 0 : (int)((long)v->height * band / nbands), stride,
@@ -39,7 +39,14 @@ static void render_band(const rt_scene *s, const rt_view *v, const rt_params *p,
 void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                     int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands)
 {
-    render_band(s, v, p, pixels, stride, stats, work, traced, band, nbands, RT_BAND_FRAME);
+    render_band(s, v, p, pixels, stride, stats, work, traced, band, nbands, RT_BAND_FRAME, NULL);
+}
+
+void rt_render_band_edges(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
+                          int stride, rt_stats *stats, void *work, const void *edges,
+                          uint8_t *traced, int band, int nbands)
+{
+    render_band(s, v, p, pixels, stride, stats, work, traced, band, nbands, RT_BAND_FRAME, edges);
 }
 
 void rt_render_band_into(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *rows,
@@ -47,7 +54,7 @@ void rt_render_band_into(const rt_scene *s, const rt_view *v, const rt_params *p
                          int nbands, int keep)
 {
     render_band(s, v, p, rows, stride, stats, work, traced, band, nbands,
-                keep ? RT_BAND_KEEP : RT_BAND_ONLY);
+                keep ? RT_BAND_KEEP : RT_BAND_ONLY, NULL);
 }
 
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,

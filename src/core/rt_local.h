@@ -397,32 +397,24 @@ enum rt_band_memory {
     RT_BAND_KEEP   /* only the band, and `work` holds its top row of corners (keep) */
 };
 
-/* The adaptive and probe modes of rt_render_band and rt_render_band_into (subsample.c). */
+/* The adaptive and probe modes of rt_render_band, rt_render_band_edges and
+ * rt_render_band_into (subsample.c); edges: rt_render_edge's rows, or NULL. */
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands, enum rt_band_memory mem);
+                        int nbands, enum rt_band_memory mem, const void *edges);
 
 /* Probe mode (probe.c), for a point (x, y) that splitting a square adds in the middle of one
  * of its edges, from sample a to sample b (the point at fraction t from a to b; span: the
  * edge's length in pixels), ends that are not both opaque and agree on every light.
- * Returns -1 without a probe where one cannot pay (ends with one record but contributions
- * that disagree; ends that differ and both cast secondary rays, whose trees a probe would have
- * to trace; an edge longer than RT_PROBE_ONE_SPAN whose ends differ in primary object or
- * cell): the point is to be shaded in full. Else probes the point's primary hit and checker
- * cell (as its full shade finds them) and returns 1 when its colour can be reconstructed: the
- * ends with its primary object and cell (the matching ones) give its record (the first of them
- * casts no secondary ray, or the ends have one record), both match, or one and span <=
- * RT_PROBE_ONE_SPAN; that record is not opaque (rt_probe_opaque: no noise texture, no texture
- * beyond the primary hit, no highlight); the ends' contributions agree within thr8 (1/255
- * steps) where both match; and (but on an edge of 2 pixels whose ends both match) every
- * light the first matching end has unlit leaves the point unlit too (its facing test, n . l and shadow ray,
- * counted in st->rays_shadow: a lit wedge between shadows neither end sees). *out then gets the
- * first matching end's record, the colour interpolated from the matching ends alone (or the
- * one's colour), that end's other tone's colour as its own (rt_sample.alt, alt_known), and
- * flags RT_SAMPLE_PROBED. Returns 0 when the probed point must be shaded in full (*out
- * untouched): *pri then holds its primary ray and hit (rt_trace_pixel_from). Counts probes in
- * st->probes. */
-#define RT_PROBE_ONE_SPAN 4
+ * Returns -1 without a probe unless the edge is 2 pixels long and its ends have one record
+ * (rt_probe_same) with no secondary ray, a is not opaque (rt_probe_opaque: no noise texture,
+ * no highlight) and their contributions agree within thr8 (1/255 steps) in both directions:
+ * the point is to be shaded in full where the squares below need it. Else probes the point's
+ * primary hit and checker cell (as its full shade finds them) and returns 1 when they are the
+ * ends': *out then gets a's record, the colour interpolated between a and b, a's other tone's
+ * colour as its own (rt_sample.alt, alt_known), and flags RT_SAMPLE_PROBED. Returns 0 when
+ * the probed point must be shaded in full (*out untouched): *pri then holds its primary ray
+ * and hit (rt_trace_pixel_from). Counts probes in st->probes. */
 int rt_probe_point(const rt_scene *s, const rt_view *v, rt_stats *st, int thr8, int x, int y,
                    const rt_sample *a, const rt_sample *b, real t, int span, rt_primary *pri,
                    rt_sample *out);

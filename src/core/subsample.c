@@ -164,8 +164,13 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         st->squares[li]++;
         const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
+        int small = 0; /* a small sphere between the corners: split, no shortcut fills it */
+        if (why == RT_SPLIT_NONE && c->view->small && ss_small_missed(c->view, k, x0, y0, w, h)) {
+            why = RT_SPLIT_OBJECT;
+            small = 1;
+        }
         if (why != RT_SPLIT_NONE) {
-            if (ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
+            if (!small && ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
                 return;
             st->split[li]++;
             st->split_by[why]++;
@@ -226,9 +231,53 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
     }
 }
 
+/* The frame's context for band rows starting at pixel row py0 of `pixels`. */
+static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt_params *p,
+                        uint32_t *pixels, int stride, int py0, rt_stats *stats, uint8_t *traced)
+{
+    *c = (ss_ctx){.scene = s,
+                  .view = v,
+                  .params = p,
+                  .stats = stats,
+                  .pixels = pixels,
+                  .stride = stride,
+                  .py0 = py0,
+                  .traced = traced,
+                  .thr8 = r_to_byte(p->threshold),
+                  .lstride = p->grid + 1,
+                  .p_quad = *p};
+    for (int n = 1; n <= p->grid; n++)
+        for (int i = 0; i <= n; i++)
+            c->wt[n][i] = r_from_ratio(i, n);
+    if (p->mode != RT_MODE_FULL)
+        c->p_quad.mode = RT_MODE_FULL;
+    if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
+        c->opaque = rt_probe_masks_of(s);
+}
+
+unsigned long rt_render_edge_size(const rt_params *p, int width, int nbands)
+{
+    if (p->mode == RT_MODE_FULL || nbands < 1)
+        return 0;
+    return (unsigned long)(nbands + 1) * (unsigned long)(ss_count(width, p->grid) + 1) *
+        sizeof(rt_sample);
+}
+
+void rt_render_edge(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *stats,
+                    void *edges, uint8_t *traced, int e, int nbands)
+{
+    if (p->mode == RT_MODE_FULL || nbands < 1 || e < 0 || e > nbands)
+        return;
+    const int g = p->grid, ncols = ss_count(v->width, g), nrows = ss_count(v->height, g);
+    ss_ctx c;
+    ss_ctx_init(&c, s, v, p, NULL, 0, 0, stats, traced);
+    ss_corner_row(&c, (rt_sample *)edges + (long)e * (ncols + 1), ncols,
+                  ss_corner((int)((long)nrows * e / nbands), g, v->height));
+}
+
 void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                         int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
-                        int nbands, enum rt_band_memory mem)
+                        int nbands, enum rt_band_memory mem, const void *edges)
 {
     const int g = p->grid, width = v->width, height = v->height;
     int ncols = ss_count(width, g), nrows = ss_count(height, g);
@@ -236,24 +285,12 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     int r0 = (int)((long)nrows * band / nbands), r1 = (int)((long)nrows * (band + 1) / nbands);
     if (r0 == r1 || (RT_GRID_BUILD_MAX < RT_GRID_MAX && g > RT_GRID_BUILD_MAX))
         return;
-    ss_ctx c = {.scene = s,
-                .view = v,
-                .params = p,
-                .stats = stats,
-                .pixels = pixels,
-                .stride = stride,
-                .py0 = mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
-                .traced = traced,
-                .thr8 = r_to_byte(p->threshold),
-                .lstride = g + 1,
-                .p_quad = *p};
-    for (int n = 1; n <= g; n++)
-        for (int i = 0; i <= n; i++)
-            c.wt[n][i] = r_from_ratio(i, n);
-    if (p->mode != RT_MODE_FULL)
-        c.p_quad.mode = RT_MODE_FULL;
-    if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
-        c.opaque = rt_probe_masks_of(s);
+    ss_ctx c;
+    ss_ctx_init(&c, s, v, p, pixels, stride, mem == RT_BAND_FRAME ? 0 : ss_corner(r0, g, height),
+                stats, traced);
+    /* the corner rows on the band's edges, traced once for every band (rt_render_edge) */
+    const rt_sample *band_edge = edges ? (const rt_sample *)edges + (long)band * (ncols + 1) : NULL;
+    const size_t row_bytes = (size_t)(ncols + 1) * sizeof(rt_sample);
 
     /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
      * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
@@ -265,12 +302,16 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
         top = bot;
         bot = work;
     }
-    if (mem != RT_BAND_KEEP)
+    if (band_edge)
+        memcpy(top, band_edge, row_bytes);
+    else if (mem != RT_BAND_KEEP)
         ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
         if (h == 0)
-            memcpy(bot, top, (size_t)(ncols + 1) * sizeof *top); /* a one-pixel-high frame */
+            memcpy(bot, top, row_bytes); /* a one-pixel-high frame */
+        else if (band_edge && r == r1 - 1)
+            memcpy(bot, band_edge + ncols + 1, row_bytes);
         else
             ss_corner_row(&c, bot, ncols, y0 + h);
         c.sy = y0;

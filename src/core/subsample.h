@@ -114,6 +114,14 @@ int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_sample *const k[4], int x0
 int ss_shadow(ss_ctx *c, const rt_sample *const k[4], int x0, int y0, int w, int h);
 int ss_centre(ss_ctx *c, rt_sample *sm, const rt_sample *const k[4], int x0, int y0);
 
+/* Does a small sphere (rt_view.small) overlap the square (x0, y0, w, h) with none of its corners
+ * k on it, its box no wider than about 1.5 times the square (a wider one always has a corner of
+ * the square's lattice on it)? It can lie between the corners, unseen by every criterion: the
+ * square is split (as for an object) until a corner finds it or no pixel is left. Out of line,
+ * called only for squares whose corners agree in a frame with small spheres. */
+__attribute__((noinline)) int ss_small_missed(const rt_view *v, const rt_sample *const k[4], int x0,
+                                              int y0, int w, int h);
+
 /* The one place that decides whether a square rt_corners_differ splits (for reason `why`; sm:
  * its (0, 0) in the lattice, k[] its corners, `own` as ss_square's) is filled instead: by the
  * cell of each pixel (checker cells), each pixel's texture (noise), its own test of one light

@@ -125,3 +125,21 @@ __attribute__((cold)) int rt_centre_smooth(const rt_sample *const k[4], const rt
         }
     return 1;
 }
+
+int ss_small_missed(const rt_view *v, const rt_sample *const k[4], int x0, int y0, int w, int h)
+{
+    for (uint32_t m = v->small; m; m &= m - 1) {
+        const unsigned i = (unsigned)__builtin_ctz(m);
+        const int16_t *b = v->box[i];
+        /* a box of side s + 1 (the cone's box, a pixel wider than the outline either side)
+         * holds a sphere about s - 3 across; one wider than the square's diagonal, 1.41 w,
+         * always has a corner of the square's lattice on it (within a pixel): left out */
+        if (2 * (b[2] - b[0]) > 3 * w + 6 || 2 * (b[3] - b[1]) > 3 * h + 6 || b[2] < x0 ||
+            b[0] > x0 + w || b[3] < y0 || b[1] > y0 + h)
+            continue;
+        if (k[0]->hits[0].object != i && k[1]->hits[0].object != i && k[2]->hits[0].object != i &&
+            k[3]->hits[0].object != i)
+            return 1;
+    }
+    return 0;
+}

@@ -47,6 +47,19 @@ static inline __attribute__((always_inline)) void trace_record(trace_ctx *c, int
     sm->nhits = (uint8_t)(n + (n < 255));
 }
 
+/* A secondary hit's checker cell (rt_texture_color's, 1 + i | j << 2 | k << 4 with i, j, k the
+ * cell's coordinates modulo 4) as the 4 high bits of its node's level (rt_hit_rec.level): i + j
+ * and j + k modulo 4, which tell apart any two cells up to three apart on a plane normal to an
+ * axis, whichever. Two corners that see the same object at a secondary level on different cells
+ * then have different ray trees, and split as on different objects: a checker seen through glass
+ * or in a mirror has cells of the other colour between them, as the primary hit's cell
+ * criterion knows. */
+static inline unsigned trace_cell_code(unsigned cell)
+{
+    const unsigned c = cell - 1, i = c & 3, j = c >> 2 & 3, k = c >> 4 & 3;
+    return ((i + j) & 3) << 4 | ((j + k) & 3) << 6;
+}
+
 #if RT_COMPILED_PROBE
 /* Probe mode's primary hit (eye_prepared 2): the one a probe of this pixel found (c->pri), or
  * found here and kept there. Out of line, off the other modes' path. */
@@ -337,7 +350,8 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
     if (level == 0)
         c->sample->lights = (uint8_t)lights;
     /* A primary ray's weight is exactly 1, and scaling by 1 is exact: skipped. */
-    trace_record(c, id, level, weight == R_ONE ? col : c3_scale_p(col, weight));
+    trace_record(c, id, level | (level && cell ? trace_cell_code(cell) : 0),
+                 weight == R_ONE ? col : c3_scale_p(col, weight));
 
     /* Reflected and refracted rays leave only from points inside the scene cube. Every ray
      * origin is then inside the cube or the hit of a ray cast from it, so within

@@ -1,4 +1,6 @@
 /* scn.c: the timeline: interpolates a scene description's tracks in integers and builds the rt_scene of one moment. */
+#include <stddef.h>
+
 #include "scn.h"
 
 #define Q(x) ((int32_t)((x)*SCN_ONE))
@@ -108,7 +110,9 @@ static vec3 scn_vec(const int32_t *v)
 /* Writes one parameter's value into the scene. */
 static void scn_set(rt_scene *s, int param, int item, const int32_t *v)
 {
-    rt_material *m = &s->materials[item];
+    /* item indexes the materials only for a material's parameters (an object's can be past
+     * the last material: no pointer is formed for it) */
+    rt_material *m = param >= SCN_P_DIFFUSE ? &s->materials[item] : NULL;
     real r = r_from_q16(v[0]);
     switch (param) {
     case SCN_P_BACKGROUND: s->background = scn_vec(v); break;

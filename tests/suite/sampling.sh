@@ -42,11 +42,13 @@ fi
 # ---- probe mode (--mode probe, docs/probe.md) -------------------------------------------------------
 # --stats: probes= beside samples_traced= (points shaded in full); --show-samples: shaded points
 # white (cyan where they took their local part from their square's corners), probed ones
-# magenta, one mark per point.
-stats=$($B/rt-fixed render $DEMO --mode probe --threads 1 --size 320x240 --time 3 --stats -o "$T/probe.ppm" 2>/dev/null)
+# magenta, one mark per point. On matte spheres (the demo's mirror floor leaves no probe).
+PROBE_AT="--scene scenes/shadows.scene --time 5"
+samples=$(kv samples_traced "$($B/rt-fixed render $PROBE_AT --threads 1 --size 320x240 --stats -o "$T/probe-ad.ppm" 2>/dev/null)")
+stats=$($B/rt-fixed render $PROBE_AT --mode probe --threads 1 --size 320x240 --stats -o "$T/probe.ppm" 2>/dev/null)
 shaded=$(kv samples_traced "$stats")
 probes=$(kv probes "$stats")
-$B/rt-fixed render $DEMO --mode probe --size 320x240 --time 3 --show-samples -o "$T/probe-dots.ppm" 2>/dev/null
+$B/rt-fixed render $PROBE_AT --mode probe --size 320x240 --show-samples -o "$T/probe-dots.ppm" 2>/dev/null
 marks=$(python3 - "$T/probe-dots.ppm" <<'PY'
 import sys
 d = open(sys.argv[1], 'rb').read().split(b'\n', 3)[3]

@@ -4,7 +4,7 @@
 # The test programs run side by side (spawn), each with its log in $T/<build>-<test>.log, and are
 # reported below in this order.
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
+  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability test_optics; do
     spawn "$T/$v-$t.log" "$B/$v/$t"
   done
 done
@@ -13,7 +13,7 @@ wait
 
 # ---- unit tests (cmocka), both builds, under AddressSanitizer + UBSan ------------------------
 for v in san-fixed san-float; do
-  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability; do
+  for t in test_numeric test_shapes test_noise test_subsample test_scene test_stability test_optics; do
     if spawned_ok "$T/$v-$t.log"; then
       pass "$v/$t ($(grep -c '^\[       OK \]' "$T/$v-$t.log") cases)"
       grep -E '^(noise|fbm|sphere|far|numeric|interpolation|object|shadow|reflected|min_contrib|plane|normalise|  )' "$T/$v-$t.log" | sed 's/^/       /'
