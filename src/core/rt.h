@@ -152,22 +152,16 @@ typedef struct rt_view {
     uint32_t cull_cols[RT_VIEW_TILES], cull_rows[RT_VIEW_TILES];
     int mirror_plane;
     uint32_t mirror_cols[RT_VIEW_TILES], mirror_rows[RT_VIEW_TILES];
-    /* Small spheres (rt_view_cull): bit i set when sphere i's outline on the frame lies within
-     * the pixels box[i] (x0, y0, x1, y1, inclusive), under RT_SMALL_MAX a side. Such a sphere
-     * can fall between the corners of a square, where no criterion sees it: adaptive
-     * subsampling splits a square that overlaps its box and has no corner on it. */
+    /* Small spheres (rt_view_cull): bit i when sphere i's outline lies within the pixels box[i]
+     * (x0, y0, x1, y1, inclusive); a square overlapping it with no corner on it is split. */
     uint32_t small;
     int16_t box[RT_MAX_OBJECTS][4];
 } rt_view;
 
-/* The side, in pixels, under which a sphere's box makes it small (rt_view.small). */
-#define RT_SMALL_MAX 32
-
 /* One node of the ray tree as adaptive subsampling compares it. */
 typedef struct rt_hit_rec {
     uint8_t object;     /* object index, or RT_NO_OBJECT */
-    uint8_t level;      /* recursion level, 0 = primary, in the low 4 bits; at a secondary hit
-                           on a checker its cell in the high 4 (trace.c: trace_cell_code) */
+    uint8_t level;      /* recursion level (low 4 bits; 0 = primary), checker cell (high 4) */
     uint8_t contrib[3]; /* this node's local colour times its weight in the pixel, 0..255 */
 } rt_hit_rec;
 
@@ -283,22 +277,17 @@ unsigned long rt_render_work_size(const rt_params *p, int width);
 void rt_render(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                int stride, rt_stats *stats, void *work, uint8_t *traced);
 
-/* Renders band `band` of `nbands` horizontal bands of the frame (whole rows of grid squares,
- * or of pixels in full mode). Bands write disjoint pixels and may run at the same time, each
- * with its own `work` and `stats`; together they give rt_render's frame byte for byte.
- * `traced` must be cleared before the first band (bands add bits to it atomically). Both
- * bands trace the corners on the edge between them: summed stats count those twice
- * (rt_render_band_edges does not). */
+/* Renders band `band` of `nbands` horizontal bands (rows of grid squares, or of pixels in full
+ * mode): disjoint pixels, at the same time if each has its own `work` and `stats`; together
+ * rt_render's frame byte for byte. `traced` is cleared before the first band (bits are added
+ * atomically). Corners on a band edge are traced by both bands (not so rt_render_band_edges). */
 void rt_render_band(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *pixels,
                     int stride, rt_stats *stats, void *work, uint8_t *traced, int band, int nbands);
 
-/* Bands that trace no point twice (adaptive and probe mode): the top-level corner rows on the
- * bands' edges, nbands + 1 rows of rt_render_edge_size(p, width, nbands) bytes in `edges`
- * (0 in full mode), are traced first, row e (0..nbands, in any order, at the same time) by
- * rt_render_edge; then rt_render_band_edges renders band `band` as rt_render_band does,
- * taking its first and last corner rows from `edges` instead of tracing them. With nbands at
- * most rt_render_band_count, the frame then traces every point rt_render traces, once: the
- * same picture, the same summed stats, on any number of bands. */
+/* Bands that trace no point twice: the corner rows on the band edges (rt_render_edge_size bytes
+ * in `edges`, 0 in full mode) are traced first by rt_render_edge, row e = 0..nbands in any order
+ * or at once; rt_render_band_edges then renders a band taking those rows from `edges`. The same
+ * picture and summed stats as rt_render, for any nbands <= rt_render_band_count. */
 unsigned long rt_render_edge_size(const rt_params *p, int width, int nbands);
 void rt_render_edge(const rt_scene *s, const rt_view *v, const rt_params *p, rt_stats *stats,
                     void *edges, uint8_t *traced, int e, int nbands);

@@ -18,6 +18,8 @@
 #error "RT_COMPILED_EFFECTS must be a set of enum rt_effect bits"
 #endif
 
+/* The side, in pixels, under which a sphere's box makes it small (rt_view.small). */
+#define RT_SMALL_MAX 32
 /* A light's state becomes 2 (highlight) when its specular term exceeds this. */
 #define RT_HIGHLIGHT_MIN R(0.125)
 /* Noise pixels: the largest lighting factor A a sample keeps (as A / 2 in a byte). */
