@@ -73,7 +73,7 @@ case "$cmd" in
     ;;
   show)
     [ $# -eq 1 ] || die "show wants one frame number and the screen file"
-    mkdir -p "$(dirname "$screen")" build/qemu-m3
+    mkdir -p -- "$(dirname -- "$screen")" build/qemu-m3
     # QEMU's monitor reads a command line: the screendump goes to a name of our own (letters,
     # digits, / - .), then is moved to the screen file, whatever characters its name holds.
     work=$(mktemp -d build/qemu-m3/show.XXXXXX)
@@ -109,7 +109,7 @@ case "$cmd" in
       exit "$status"
     fi
     [ -s "$work/screen.ppm" ] || die "no screendump was written: $(grep -v '^(qemu)\|QEMU\|Timer with period zero' "$work/monitor.log" | head -1)"
-    mv -f "$work/screen.ppm" "$screen"
+    mv -f -- "$work/screen.ppm" "$screen"
     exit 0
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
