@@ -233,8 +233,9 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 
 # ---- the intro players (build/intro-fixed, build/intro-float): the original's 64 kB limit -----
 # The intro in a window and nothing else (src/app/player.c over play.c). Built for size: unused
-# functions dropped, no unwind tables, the hot tracer (shading, shapes) at -O2 and the rest at -Os
-# (subsampling, textures and noise too: the player needs the room; a desktop has speed to spare).
+# functions dropped, no unwind tables, the numeric layer and the shapes at -O2 and the rest at -Os
+# (the shading, subsampling, textures and noise too: the player needs the room; a desktop has
+# speed to spare).
 # The stripped file grows a page (4 KiB) at once when the code reaches the page its data starts
 # on: the build prints how much room is left (readelf -lW build/intro-fixed: code end against RW
 # start).
@@ -242,8 +243,8 @@ $(BUILD)/stress-fixed: $(BUILD)/obj/fixed/tests/test_stability.o $(CORE_OBJS_fix
 # where position-independent code takes a 7-byte lea), constant tables of pointers read-only
 # data instead of relocated data; -fno-plt: calls into SDL2, libpng and libc go through the GOT
 # (bound at start-up), with no PLT stubs.
-PLAYER_HOT := fixed/fx.c src/core/trace.c src/core/shapes.c src/core/probe.c
-PLAYER_COLD := $(SUBSAMPLE_SRCS) src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
+PLAYER_HOT := fixed/fx.c src/core/shapes.c src/core/probe.c
+PLAYER_COLD := $(SUBSAMPLE_SRCS) src/core/trace.c src/core/texture.c src/core/noise.c src/core/prepare.c src/core/camera.c src/core/render.c src/scene/scn.c src/scene/knobs.c \
                src/app/cli.c src/app/play.c src/app/frame.c src/app/image.c src/app/player.c src/app/outpath.c \
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
