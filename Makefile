@@ -92,8 +92,8 @@ SCENE_SRCS := src/scene/scn.c src/scene/knobs.c
 CORE_SRCS := $(TRACER_SRCS) $(SCENE_SRCS)
 # The intro is compiled into the programs from scenes/intro.scene by rt-scenec.
 GEN := $(BUILD)/gen
-APP_SRCS := src/app/app.c src/app/cli.c src/app/play.c src/app/frame.c src/scene/scn_parse.c src/app/image.c src/app/outpath.c \
-            platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
+APP_SRCS := src/app/app.c src/app/cli.c src/app/play.c src/app/frame.c src/scene/scn_parse.c src/scene/scn_lex.c \
+            src/app/image.c src/app/outpath.c platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 # SDL2 (the player's window), asked of pkg-config when a recipe runs: after setup.sh.
 SDL_CFLAGS = $(shell pkg-config --cflags sdl2)
 SDL_LIBS = $(shell pkg-config --libs sdl2)
@@ -194,15 +194,15 @@ $(BUILD)/rt-cmp: $(BUILD)/obj/float/src/tools/cmp.o $(BUILD)/obj/float/src/tools
 
 # The scene compiler runs at build time, so it is built from the float objects.
 $(BUILD)/rt-scenec: $(BUILD)/obj/float/src/tools/scenec.o $(BUILD)/obj/float/src/tools/topt.o \
-                   $(BUILD)/obj/float/src/scene/scn_parse.o \
+                   $(BUILD)/obj/float/src/scene/scn_parse.o $(BUILD)/obj/float/src/scene/scn_lex.o \
                    $(BUILD)/obj/float/src/scene/scn_cwrite.o \
                    $(BUILD)/obj/float/src/app/outpath.o $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ -lm
 
 # The subsampling bound (tests/bench_subsample.sh): float, like the reference it measures.
 # The command line of render (src/app/cli.c) over the headless platform and the null display.
-EDGES_SRCS := src/tools/edges.c src/scene/scn_parse.c src/app/cli.c src/app/image.c src/app/outpath.c \
-              platform/headless.c platform/threads.c platform/null.c
+EDGES_SRCS := src/tools/edges.c src/scene/scn_parse.c src/scene/scn_lex.c src/app/cli.c \
+              src/app/image.c src/app/outpath.c platform/headless.c platform/threads.c platform/null.c
 $(BUILD)/rt-edges: $(patsubst %.c,$(BUILD)/obj/float/%.o,$(EDGES_SRCS)) $(CORE_OBJS_float)
 	$(CC) $(OPT) -o $@ $^ $(TOOL_LIBS)
 
@@ -215,7 +215,8 @@ $(BUILD)/$(1)/rt: $$(CORE_OBJS_$(1)) $$(APP_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ $$(LIBS)
 
-$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+$(BUILD)/$(1)/test_%: $(BUILD)/obj/$(1)/tests/test_%.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o \
+                     $(BUILD)/obj/$(1)/src/scene/scn_lex.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $(SAN) -o $$@ $$^ -lcmocka -lm
 endef
@@ -460,7 +461,8 @@ qemu-m0-frames: setup-arm
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
 define fuzz_prog
 $(BUILD)/$(1)/fuzz_scene: $(BUILD)/obj/$(1)/tests/fuzz_scene.o $(BUILD)/obj/$(1)/src/scene/scn_parse.o \
-                         $(BUILD)/obj/$(1)/src/scene/scn_cwrite.o $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
+                         $(BUILD)/obj/$(1)/src/scene/scn_lex.o $(BUILD)/obj/$(1)/src/scene/scn_cwrite.o \
+                         $$(CORE_OBJS_$(1)) $$(FIXMATH_LIB_$(1))
 	@mkdir -p $$(@D)
 	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $$@ $$^ -lm
 endef

@@ -1,21 +1,17 @@
 /* rt.h: the ray tracer core's public interface: scene, view, render settings, statistics, frames and bands.
- *
  * Whitted ray tracing as in the thesis: nearest hit, hard shadows from point lights, Phong
  * shading, reflection and refraction up to a depth limit, procedural textures, adaptive
- * subsampling. The core never allocates; every buffer is handed in. The same source builds in
- * float and in fixed point (fixed/real.h). A program fills an rt_scene, calls
- * rt_scene_prepare, sets up an rt_view (rt_view_init, rt_view_cull) and renders with
- * rt_render or band by band. The core's own plumbing is rt_local.h.
- */
+ * subsampling. The core never allocates: every buffer is handed in. One source builds in float
+ * and in fixed point (fixed/real.h). Fill an rt_scene, call rt_scene_prepare, set up an rt_view
+ * (rt_view_init, rt_view_cull), render with rt_render or by bands. Core plumbing: rt_local.h. */
 #ifndef FIXRAY_RT_H
 #define FIXRAY_RT_H
 
 #include <stdint.h>
 #include "real.h"
 
-/* A scene's limits. Sets of objects are 32-bit masks: at most 32 objects. The boards, which play
- * only the scene compiled into them, define these to its sizes to save RAM (Makefile:
- * BOARD_MAX_*; src/app/intro.c refuses a compiled scene with more). */
+/* A scene's limits; object sets are 32-bit masks: at most 32 objects. The boards define these to
+ * their compiled scene's sizes (Makefile: BOARD_MAX_*; src/app/intro.c refuses more). */
 #ifndef RT_MAX_OBJECTS
 #define RT_MAX_OBJECTS 32
 #endif
@@ -49,8 +45,7 @@ typedef struct rt_texture {
     uint8_t kind;    /* enum rt_texture_kind */
     uint8_t palette; /* enum rt_palette_id */
     uint8_t octaves; /* noise octaves, 1..RT_NOISE_MAX_OCTAVES */
-    uint8_t active;  /* set by rt_scene_prepare: 1 when the texture changes the colour (noise,
-                        or a checker whose two colours differ) */
+    uint8_t active;  /* rt_scene_prepare: 1 if it changes the colour (noise, 2-colour checker) */
     real scale;      /* texture features per scene unit */
     real turbulence; /* strength of the noise disturbance */
     rt_color color2; /* second colour of the checkerboard */
@@ -77,8 +72,7 @@ typedef struct rt_object {
     uint8_t material; /* index into rt_scene.materials */
     vec3 center;      /* sphere */
     real radius;
-    real behind; /* sphere: a ray with tca below it starts outside, the sphere behind it
-                    (rt_sphere_behind(radius), filled by rt_scene_prepare) */
+    real behind; /* sphere: tca below it: ray starts outside, sphere behind (rt_sphere_behind) */
     wide radius2;
     rinv inv_radius; /* sphere: for its normals (d3_norm_near), filled by rt_scene_prepare */
     vec3 axis;       /* plane: normal as given (any length) */
@@ -96,9 +90,8 @@ typedef struct rt_camera {
     real fov; /* vertical field of view, degrees, in [10, 120] */
 } rt_camera;
 
-/* Effects a scene may need (bits); the tracer skips the code of every effect not in
- * rt_scene.effects. Derived from the scene by rt_scene_prepare (effects on demand), or all
- * forced on. Macros rather than an enum: RT_COMPILED_EFFECTS is tested by the preprocessor. */
+/* Effects a scene may need (bits): the tracer skips the code of those not in rt_scene.effects
+ * (rt_scene_prepare derives them, or all forced on). Macros: the preprocessor tests them. */
 #define RT_FX_SHADOW 1u   /* shadow rays: some object can come between a light and a surface */
 #define RT_FX_SPECULAR 2u /* Phong highlights: some material has specular > 0 */
 #define RT_FX_REFLECT 4u  /* mirror rays: some material reflects (or transmits: total reflection) */
@@ -107,8 +100,7 @@ typedef struct rt_camera {
 #define RT_FX_NOISE 32u   /* some texture uses Perlin noise (marble, wood, noise) */
 #define RT_FX_ALL 63u
 
-/* Effects compiled into the tracer: a scene compiled into the program (scenec) defines this
- * to the effects of its whole timeline, and the code of the others is not linked at all. */
+/* Effects compiled in: a compiled-in scene (scenec) sets its timeline's; others are not linked. */
 #ifndef RT_COMPILED_EFFECTS
 #define RT_COMPILED_EFFECTS RT_FX_ALL
 #endif
@@ -131,8 +123,8 @@ typedef struct rt_scene {
     rt_scene_cull cull;                /* the tracer's culling data (rt_cull.h) */
 } rt_scene;
 
-/* Tiles per row and per column of rt_view's candidate sets: a frame's tiles are the smallest
- * power-of-two squares (at least 4 pixels) that keep both counts within it. */
+/* Tiles per row and column of rt_view's candidate sets: the tiles are the smallest power-of-two
+ * squares (at least 4 pixels) that keep both counts within it. */
 #ifndef RT_VIEW_TILES
 #define RT_VIEW_TILES 40 /* the Cortex-M boards' 128x64 frames need 32 (Makefile) */
 #endif
@@ -146,8 +138,8 @@ typedef struct rt_view {
     real pixel;    /* a pixel's width at distance 1, 2 tan(fov/2) / height (noise footprint) */
     real tan_half; /* tan(fov/2) */
     int width, height;
-    /* Candidate sets per tile, set by rt_view_cull (rt_local.h: rt_view_candidates), for the
-     * primary rays and for their reflections off plane mirror_plane (-1: none). */
+    /* Candidate sets per tile (rt_view_cull; rt_local.h: rt_view_candidates), for primary rays
+     * and their reflections off plane mirror_plane (-1: none). */
     int cull_shift;
     uint32_t cull_cols[RT_VIEW_TILES], cull_rows[RT_VIEW_TILES];
     int mirror_plane;
@@ -182,8 +174,7 @@ typedef struct rt_sample {
     uint8_t alt_known; /* enum rt_alt */
 } rt_sample;
 
-/* Adaptive subsampling: square sizes are powers of two up to RT_GRID_MAX; level 0 is the
- * --grid square, level k its halves k times over. */
+/* Adaptive squares: powers of two up to RT_GRID_MAX; level 0 is --grid, level k halved k times. */
 #define RT_GRID_MAX 16
 #define RT_GRID_LEVELS 4
 /* The largest grid a build renders: less on the Cortex-M boards (src/app/intro.c refuses more). */
@@ -191,8 +182,8 @@ typedef struct rt_sample {
 #define RT_GRID_BUILD_MAX RT_GRID_MAX
 #endif
 
-/* full: every pixel traced; adaptive: the thesis' adaptive subsampling; probe: adaptive
- * subsampling whose new points are probed first and shaded only where needed (probe.c). */
+/* full: every pixel traced; adaptive: the thesis' subsampling; probe: subsampling whose new
+ * points are probed first and shaded only where needed (probe.c). */
 enum rt_mode { RT_MODE_FULL, RT_MODE_ADAPTIVE, RT_MODE_PROBE };
 
 /* The name of a mode as --mode takes it: "full", "adaptive" or "probe". */
@@ -204,14 +195,12 @@ static inline const char *rt_mode_name(int mode)
 /* How a frame is rendered. */
 typedef struct rt_params {
     int depth;        /* recursion limit, 0..RT_MAX_DEPTH */
-    real min_contrib; /* adaptive recursion control: secondary rays whose weight in the pixel
-                         is below this are not cast (0 = cast every ray) */
+    real min_contrib; /* secondary rays of less weight in the pixel are not cast (0: cast all) */
     int mode;         /* enum rt_mode */
     int grid;         /* adaptive: size of the top-level squares, 2, 4, 8 or 16 */
     real threshold;   /* adaptive: split when a node's contribution differs by more than this
                          between corners (colour units, 0..1; 1 disables the criterion) */
-    int octaves;      /* cap on noise octaves: each texture sums min(its octaves, this);
-                         0 = every texture's own (the scene's) */
+    int octaves;      /* noise octaves: each texture sums min(its own, this); 0 = its own */
     int footprint;    /* 1: noise octaves finer than a pixel's footprint are left out */
 } rt_params;
 
@@ -242,25 +231,22 @@ typedef struct rt_stats {
     uint32_t local_points; /* points whose primary hit's local part was interpolated */
 } rt_stats;
 
-/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero)
- * and derives the effects the scene needs: effects, reach_depth, occluders and the culling data
- * (rt_scene.cull). Call it again whenever the scene changes. */
+/* Fills the derived fields of objects and materials (radius2, plane normal, ior_inv, spec_zero),
+ * effects, reach_depth, occluders and cull. Call it again whenever the scene changes. */
 void rt_scene_prepare(rt_scene *s);
 
 /* After rt_scene_prepare: every effect on, the path effects on demand is measured against. */
 void rt_scene_force_effects(rt_scene *s);
 
-/* 0 when the camera has no view direction: its eye and the point it looks at coincide (an
- * animated camera can get there between keys). Such a view cannot be set up. */
+/* 0 when eye and look-at point coincide (an animated camera can, between keys): no view. */
 int rt_view_ok(const rt_camera *cam);
 
 /* Sets up the primary-ray frame for an image of width x height pixels. Without rt_view_ok(cam)
  * the camera looks down -z; an up vector of zero, or along the view, is replaced. */
 void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height);
 
-/* Fills the view's candidate sets for scene s as prepared (rt_scene_prepare) with the view's
- * eye: the same pictures as without them, fewer intersection tests. Call it again whenever the
- * scene or the view changes; rt_view_init resets the sets to every object. */
+/* Fills the view's candidate sets for prepared scene s and the view's eye: same pictures, fewer
+ * intersection tests. Call again when scene or view changes; rt_view_init resets them to all. */
 void rt_view_cull(rt_view *v, const rt_scene *s);
 
 /* Bytes of working storage rt_render needs for frames `width` pixels wide: in adaptive mode
@@ -302,11 +288,10 @@ int rt_render_band_count(const rt_params *p, int height);
  * rows *y0 .. *y0 + *rows - 1 (*rows = 0: an empty band). Bands in order cover the frame. */
 void rt_render_band_rows(const rt_params *p, int height, int band, int nbands, int *y0, int *rows);
 
-/* rt_render_band into memory that holds only the band: `rows` is its first row (y0 of
+/* rt_render_band into memory holding only the band: `rows` is its first row (y0 of
  * rt_render_band_rows), rows `stride` pixels apart. With `keep`, the previous call with this
- * `work` rendered band - 1 of the same frame: the row of corners the two share is taken from
- * `work`, so bands rendered in order trace and give what one rt_render does. A display that
- * keeps its own pixels needs no frame in RAM. */
+ * `work` rendered band - 1 of the same frame and the shared row of corners is taken from `work`:
+ * bands in order trace and give what one rt_render does, with no frame in RAM. */
 void rt_render_band_into(const rt_scene *s, const rt_view *v, const rt_params *p, uint32_t *rows,
                          int stride, rt_stats *stats, void *work, uint8_t *traced, int band,
                          int nbands, int keep);
