@@ -7,12 +7,3 @@ relay tests/arm.sh
 relay tests/m3.sh
 relay tests/m0.sh
 relay tests/cycles.sh
-
-# ---- the intro players within the original's 64 kB (stripped, as the Makefile prints them) ------
-for p in intro-fixed intro-float; do
-  if strip -o "$T/$p.stripped" "$B/$p" && sz=$(stat -c %s "$T/$p.stripped") && [ "$sz" -le 65536 ]; then
-    pass "$p: $sz bytes stripped, within 65,536"
-  else
-    fail "$p: ${sz:-?} bytes stripped, over the 65,536 of a 64 kB intro"
-  fi
-done
