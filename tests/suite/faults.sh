@@ -9,14 +9,17 @@ rm -rf "$FW" && mkdir -p "$FW"
 
 # ---- an interrupted render leaves no temporary or half-written file --------------------------
 # The render is stopped (SIGSTOP) while a temporary file of its output is in the folder, then
-# sent the signal and let go: afterwards the folder holds finished images only.
+# sent the signal and let go: afterwards the folder holds finished images only. Every fwrite
+# sleeps 20 ms first (tests/slow_write.c, preloaded), so the poll finds a file being written on
+# any machine (a PPM is one fwrite, over in a millisecond).
+gcc -std=c11 -O2 -shared -fPIC -o "$FW/slow_write.so" tests/slow_write.c -ldl
 interrupt_run() { # signal extension: prints what is wrong, nothing when all is well
   local sig=$1 ext=$2 d pid tries f tmp=()
   for tries in 1 2 3 4 5 6 7 8; do
     d=$FW/int-$sig-$ext-$tries
     mkdir -p "$d"
     # a background job starts with SIGINT ignored: env gives it the default action back
-    env --default-signal=INT "$FR" render --frames all --size 640x480 -o "$d/f-%04d.$ext" 2>"$d.err" &
+    env --default-signal=INT LD_PRELOAD="$FW/slow_write.so" "$FR" render --frames all --size 640x480 -o "$d/f-%04d.$ext" 2>"$d.err" &
     pid=$!
     # poll without forking until a temporary file shows, then freeze the writer
     for _ in $(seq 200000); do
@@ -35,6 +38,7 @@ interrupt_run() { # signal extension: prints what is wrong, nothing when all is 
       [ -e "${tmp[0]}" ] && { echo "SIG$sig left ${tmp[*]##*/}"; return; }
       [ $st -eq $((128 + $(kill -l $sig))) ] || { echo "SIG$sig: exit $st, not ended by the signal"; return; }
       for f in "$d"/f-*."$ext"; do
+        [ -e "$f" ] || continue # none finished before the signal
         $B/rt-cmp "$f" "$f" >/dev/null 2>&1 || { echo "SIG$sig left an unreadable ${f##*/}"; return; }
       done
       return
