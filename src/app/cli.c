@@ -1,10 +1,10 @@
 /* cli.c: the option table of render, play, the intro players and rt-edges: the grammar, the values, the messages and the usage text, all from one row per option. */
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "eline.h"
 #include "image.h"
 #include "outpath.h"
 #include "platform.h"
@@ -139,28 +139,13 @@ cli_opts cli_defaults(int cmd)
                       .threads = plat_cpu_count()};
 }
 
-/* Prints a message on standard error as one line: a control character in it (a newline or a
- * tab from a word of the command line) is written as '?'. */
-static void cli_line(const char *fmt, ...)
-{
-    char line[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    for (char *c = line; *c; c++)
-        if ((unsigned char)*c < ' ' || *c == 0x7f)
-            *c = '?';
-    fprintf(stderr, "%s\n", line);
-}
-
 int cli_error(const char *option, const char *what, const char *value)
 {
     const char *p = plat_program();
     if (value)
-        cli_line("%s: %s: %s, got '%s' (see %s --help)", p, option, what, value, p);
+        eline_print("%s: %s: %s, got '%s' (see %s --help)", p, option, what, value, p);
     else
-        cli_line("%s: %s: %s (see %s --help)", p, option, what, p);
+        eline_print("%s: %s: %s (see %s --help)", p, option, what, p);
     return 2;
 }
 
@@ -433,7 +418,7 @@ static int cli_set(const struct cli_option *r, const char *name, const char *v, 
         if (!img_path_ok(v))
             return cli_error(name, "the screenshot must end in .png or .ppm", v);
         if (outpath_check(v, err, sizeof err) != 0) {
-            cli_line("%s: %s", plat_program(), err);
+            eline_print("%s: %s", plat_program(), err);
             return 2;
         }
         o->screenshot = v;

@@ -1,33 +1,18 @@
 /* topt.c: the command-line grammar of the small tools (rt-cmp, rt-scenec), that of render's (src/app/cli.c). */
 #include "topt.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli.h" /* CLI_VERSION_NAME */
-
-/* Prints a message on standard error as one line: a control character in it (a newline or a
- * tab from a word of the command line) is written as '?'. */
-static void topt_line(const char *fmt, ...)
-{
-    char line[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    for (char *c = line; *c; c++)
-        if ((unsigned char)*c < ' ' || *c == 0x7f)
-            *c = '?';
-    fprintf(stderr, "%s\n", line);
-}
+#include "eline.h"
 
 int topt_error(const char *prog, const char *option, const char *what, const char *value)
 {
     if (value)
-        topt_line("%s: %s: %s, got '%s' (see %s --help)", prog, option, what, value, prog);
+        eline_print("%s: %s: %s, got '%s' (see %s --help)", prog, option, what, value, prog);
     else
-        topt_line("%s: %s: %s (see %s --help)", prog, option, what, prog);
+        eline_print("%s: %s: %s (see %s --help)", prog, option, what, prog);
     return 2;
 }
 
@@ -49,7 +34,7 @@ int topt_next(const char *prog, const topt *opts, int n, int argc, char **argv, 
            !(opts[k].alias && strlen(opts[k].alias) == len && strncmp(a, opts[k].alias, len) == 0))
         k++;
     if (k == n) {
-        topt_line("%s: %.*s: unknown option (see %s --help)", prog, (int)len, a, prog);
+        eline_print("%s: %.*s: unknown option (see %s --help)", prog, (int)len, a, prog);
         return TOPT_FAIL;
     }
     char name[32]; /* as given: "-o" or "--output" */
