@@ -68,24 +68,29 @@ fi
 # ---- make tradeoff's script, QUICK=1: runs end to end and writes a well-formed table ------------
 # Form, not timings: one row per configuration (float default, fixed full), ms > 0 with the worst
 # frame no faster than the mean, PSNR a number or inf (worst <= mean), over8 a share in 0..100 %,
-# and the plot written as a PNG. The ARM926 column: the fixed full row (a non-default setting on
-# the board) has a positive whole count of instructions, other than the board's default's.
+# and the plot written as a PNG. The ARM926 columns: the board's estimated ms, cycles and
+# instructions are positive, the ms the cycles at 200 MHz, the CPI the cycles over the
+# instructions and above 1; the fixed full row (a non-default setting on the board) costs other
+# than the board's default.
 trade_md=$T/tradeoff-quick.md
 if QUICK=1 tests/tradeoff.sh -o "$trade_md" >"$T/tradeoff-quick.out" 2>"$T/tradeoff-quick.err"; then
   problems=$(awk -F' *[|] *' '
     function db(s) { sub(/ dB$/, "", s); return s }
     function isdb(s) { return s ~ /^(inf|-?[0-9]+[.][0-9]+) dB$/ }
-    /^[|] build [|] configuration [|] render options [|] mean ms [|] worst-frame ms [|] x float default [|] ARM Minstr\/frame [|] x ARM fixed default [|]/ { head = 1 }
+    function near(a, b, tol) { return a - b <= tol && b - a <= tol }
+    /^[|] build [|] configuration [|] render options [|] mean ms [|] worst-frame ms [|] x float default [|] ARM est[.] ms at 200 MHz [|] x ARM fixed default [|] ARM Mcycles\/frame [|] ARM Minstr\/frame [|] ARM CPI [|]/ { head = 1 }
     /^[|] (float|fixed) [|]/ {
       key = $2 "/" $3
       if (key in seen) print "duplicate row " key
       seen[key] = 1; n++
       if (!($5 + 0 > 0 && $6 + 0 >= $5 + 0)) print "bad mean/worst ms: " $0
-      if ($8 !~ /^[0-9]+[.][0-9]$/ || $8 + 0 <= 0) print "ARM926 Minstr/frame not a positive number: " $0
-      if ($2 == "fixed" && ($9 !~ /^[0-9]+[.][0-9][0-9]$/ || $9 == "1.00")) print "fixed full: ARM926 count not other than the default: " $0
-      if (!isdb($10) || !isdb($11)) print "PSNR not a number or inf: " $0
-      else if (db($10) != "inf" && (db($11) == "inf" || db($11) + 0 > db($10) + 0)) print "worst PSNR above the mean: " $0
-      if ($12 !~ /^[0-9]+[.][0-9]+ %$/ || $12 + 0 > 100 || $13 !~ /^[0-9]+[.][0-9]+ %$/ || $13 + 0 < $12 + 0) print "bad over8: " $0
+      if ($8 !~ /^[0-9]+$/ || $10 !~ /^[0-9]+[.][0-9]$/ || $11 !~ /^[0-9]+[.][0-9]$/ || $11 + 0 <= 0) print "ARM926 ms, Mcycles, Minstr not positive numbers: " $0
+      else if (!near($8, $10 * 5, 1)) print "ARM926 ms not the cycles at 200 MHz: " $0
+      if ($12 !~ /^[0-9][.][0-9][0-9]$/ || $12 + 0 <= 1 || !near($12, $10 / $11, 0.02)) print "ARM926 CPI not cycles / instructions above 1: " $0
+      if ($2 == "fixed" && ($9 !~ /^[0-9]+[.][0-9][0-9]$/ || $9 == "1.00")) print "fixed full: ARM926 cost not other than the default: " $0
+      if (!isdb($13) || !isdb($14)) print "PSNR not a number or inf: " $0
+      else if (db($13) != "inf" && (db($14) == "inf" || db($14) + 0 > db($13) + 0)) print "worst PSNR above the mean: " $0
+      if ($15 !~ /^[0-9]+[.][0-9]+ %$/ || $15 + 0 > 100 || $16 !~ /^[0-9]+[.][0-9]+ %$/ || $16 + 0 < $15 + 0) print "bad over8: " $0
     }
     END {
       if (!head) print "no table header"
@@ -97,12 +102,12 @@ if QUICK=1 tests/tradeoff.sh -o "$trade_md" >"$T/tradeoff-quick.out" 2>"$T/trade
     problems+="${problems:+$nl}no PNG plot at $png"
   grep -q 'tradeoff: frame 1/1 (t=14 s), round 1/1' "$T/tradeoff-quick.err" ||
     problems+="${problems:+$nl}no progress on standard error"
-  arm_def=$(sed -n 's/^tradeoff: ARM926 fixed (defaults), frame 350: \([0-9]*\) instructions$/\1/p' "$T/tradeoff-quick.err")
-  arm_full=$(sed -n 's/^tradeoff: ARM926 fixed --mode full, frame 350: \([0-9]*\) instructions$/\1/p' "$T/tradeoff-quick.err")
+  arm_def=$(sed -n 's/^tradeoff: ARM926 fixed (defaults), frame 350: \([0-9]*\) instructions, [0-9]* cycles$/\1/p' "$T/tradeoff-quick.err")
+  arm_full=$(sed -n 's/^tradeoff: ARM926 fixed --mode full, frame 350: \([0-9]*\) instructions, [0-9]* cycles$/\1/p' "$T/tradeoff-quick.err")
   [[ "$arm_full" =~ ^[1-9][0-9]*$ ]] && [[ "$arm_def" =~ ^[1-9][0-9]*$ ]] && [ "$arm_full" != "$arm_def" ] ||
     problems+="${problems:+$nl}ARM926 counts: fixed --mode full '$arm_full', fixed default '$arm_def' (want two different positive whole numbers)"
   if [ -z "$problems" ]; then
-    pass "make tradeoff's script (QUICK=1): $(grep -cE '^[|] (float|fixed) [|]' "$trade_md") rows with ms, ARM926 instructions, PSNR and over8, and the plot; board frame 350: $arm_full instructions with --mode full, $arm_def by default"
+    pass "make tradeoff's script (QUICK=1): $(grep -cE '^[|] (float|fixed) [|]' "$trade_md") rows with ms, ARM926 estimated ms, cycles and instructions, PSNR and over8, and the plot; board frame 350: $arm_full instructions with --mode full, $arm_def by default"
   else
     fail "make tradeoff's script (QUICK=1) wrote a malformed $trade_md:"
     sed 's/^/       /' <<<"$problems"
