@@ -451,11 +451,11 @@ $(M0_ELF): $(M0_OBJS) $(M0_OBJ)/libfixmath.a platform/m0/link.ld
 -include $(M0_OBJS:.o=.d)
 
 m0: setup-arm
-	@$(MAKE) -s --no-print-directory $(M0_ELF)
+	@$(MAKE) -s --no-print-directory $(M0_ELF) $(PROFILE_PLUGIN)
 	@tests/m0.sh --print
 
 qemu-m0-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed
+	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed $(PROFILE_PLUGIN)
 	@platform/m0/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
@@ -603,7 +603,7 @@ arm-text-order: setup-arm
 # The cycle model against hand-counted programs and the boards' icount figures (tests/cycles.sh;
 # make test runs it too).
 test-cycles: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(PROFILE_PLUGIN)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(M0_ELF) $(PROFILE_PLUGIN)
 	@tests/cycles.sh
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).
