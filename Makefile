@@ -29,9 +29,10 @@
 #                   (both: SETTINGS="--octaves 2 --grid 4 ...", render's settings, on the board)
 #   make qemu-bench instructions per intro frame under QEMU, fixed vs soft-float (and the cycle
 #                   model's estimate beside them)
-#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16] [SETTINGS=...]  where the board's
-#                   cycles and instructions go: per function inside the frames, ranked by the
-#                   ARM926 cycle model's cycles, with CPI and D-cache misses (a QEMU TCG plugin)
+#   make qemu-profile [FRAMES="425 875"] [REAL=fixed|float|fixed16|m3|m0] [SETTINGS=...]  where the
+#                   board's cycles and instructions go: per function inside the frames, ranked by
+#                   the core's cycle model (ARM926; m3, m0: the Cortex-M3 and M0 images), with CPI
+#                   and D-cache misses (a QEMU TCG plugin)
 #   make test-cycles the cycle model against hand-counted programs (tests/cycles.sh)
 #   make arm-text-order  rewrite platform/arm/text-order.ld (hot functions first) from a profile
 #   make m3         build/m3/intro-fixed.elf (Cortex-M3, QEMU lm3s6965evb, 128x64 OLED); sizes
@@ -39,6 +40,7 @@
 #   make qemu-m3-frames FRAMES="0 425 875"   128x64 frames rendered band by band on the M3
 #   make m0         build/m0/intro-fixed.elf (Cortex-M0, QEMU microbit, 16 KiB of SRAM); its sizes
 #   make qemu-m0-frames FRAMES="0 425 875"   the same frames rendered on the M0, 16 KiB of RAM
+#                   (instructions and the Cortex-M0 cycle model's cycles per frame)
 #   make stress     the randomised property test (tests/test_stability.c) at -O2 in both builds,
 #                   STRESS_RAYS rays per shape (default 20,000,000)
 #   make fuzz [SECONDS=N] every libFuzzer target N s each: the scene parser, timeline and tracer
@@ -451,11 +453,11 @@ $(M0_ELF): $(M0_OBJS) $(M0_OBJ)/libfixmath.a platform/m0/link.ld
 -include $(M0_OBJS:.o=.d)
 
 m0: setup-arm
-	@$(MAKE) -s --no-print-directory $(M0_ELF)
+	@$(MAKE) -s --no-print-directory $(M0_ELF) $(PROFILE_PLUGIN)
 	@tests/m0.sh --print
 
 qemu-m0-frames: setup-arm
-	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed
+	@$(MAKE) -s --no-print-directory $(M0_ELF) $(BUILD)/rt-fixed $(PROFILE_PLUGIN)
 	@platform/m0/qemu.sh frames $(SETTINGS) $(if $(filter command line,$(origin FRAMES)),$(FRAMES),$(M3_FRAMES))
 
 # build/fuzz-<real>/fuzz_scene: the scene parser, timeline and tracer under libFuzzer.
@@ -603,7 +605,7 @@ arm-text-order: setup-arm
 # The cycle model against hand-counted programs and the boards' icount figures (tests/cycles.sh;
 # make test runs it too).
 test-cycles: setup-arm
-	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(PROFILE_PLUGIN)
+	@$(MAKE) -s --no-print-directory $(ARM_ELFS) $(M3_ELF) $(M0_ELF) $(PROFILE_PLUGIN)
 	@tests/cycles.sh
 
 # FRAMES defaults to two frames of the issue that asked for the profiler (425: textures, 875: glass).

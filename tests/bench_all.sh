@@ -9,6 +9,9 @@
 # Cortex-M3: platform/m3/qemu.sh bench, the fixed image at the OLED's 128x64, the same frames,
 # fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames at grid 4 (the
 # board's default: 16 KiB of RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
+# The boards' fps are the cycle model's (the boards' qemu.sh print each frame's estimated cycles,
+# docs/arm.md, Cycle model): cycles divided by the clock, with the one-instruction-a-cycle figure,
+# an upper bound, in brackets.
 # Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
 # on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
 # seconds (make test). Progress goes to standard error; the file is also printed.
@@ -67,6 +70,15 @@ platform/m0/qemu.sh bench $q_first $q_last $q_step >build/bench/qemu-m0.log 2>&1
   die "the M0 image failed (build/bench/qemu-m0.log): $(tail -1 build/bench/qemu-m0.log)"
 printf 'm0\tfixed\t128x64\t1\t%s\t%s\n' "$(sed -n 's/^frames=.* mean=\([0-9]*\).*/\1/p' build/bench/qemu-m0.log)" \
   "$(sed -n 's/^worst=\([0-9]*\).*/\1/p' build/bench/qemu-m0.log)" >>"$rows"
+# cyc LOG: the mean and worst frame's estimated cycles from a board's bench log
+cyc() {
+  local m w
+  m=$(sed -n 's/^frames=[0-9]* mean=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
+  w=$(sed -n 's/^worst=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
+  [ -n "$m" ] && [ -n "$w" ] || die "no cycles in $1"
+  echo "$m $w"
+}
+cycles="fixed $(cyc build/bench/qemu-fixed.log) float $(cyc build/bench/qemu-float.log) m3 $(cyc build/bench/qemu-m3.log) m0 $(cyc build/bench/qemu-m0.log)"
 took=$(($(date +%s) - start))
 q_n=$(grep -c '^frame=' build/bench/qemu-fixed.log)
 d_n=$(seq 0 "$step" 48 | wc -l)
@@ -85,25 +97,35 @@ kept=""
   echo
   echo "| platform | build | size | threads | mean frame | worst frame | mean fps | worst-frame fps |"
   echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |"
-  awk -F'\t' -v mhz=$CLOCK_MHZ -v m3mhz=$M3_MHZ -v m0mhz=$M0_MHZ -v m0fast=$M0_FAST_MHZ '
+  awk -F'\t' -v mhz=$CLOCK_MHZ -v m3mhz=$M3_MHZ -v m0mhz=$M0_MHZ -v m0fast=$M0_FAST_MHZ -v cycles="$cycles" '
+    BEGIN { n = split(cycles, c, " "); for (i = 1; i + 2 <= n; i += 3) { cm[c[i]] = c[i + 1]; cw[c[i]] = c[i + 2] } }
+    function frame(ins, cy) { return sprintf("%.1f M cycles (%.1f M instructions)", cy / 1e6, ins / 1e6) }
+    function fps(clock, ins, cy) { return sprintf("%.2f (%.2f)", clock * 1e6 / cy, clock * 1e6 / ins) }
     $1 == "desktop" { printf "| desktop | %s | %s | %d | %.2f ms | %.2f ms | %.1f | %.1f |\n", $2, $3, $4, $5, $6, 1000 / $5, 1000 / $6 }
-    $1 == "arm926"  { printf "| ARM926, QEMU | %s | %s | %d | %.1f M instructions | %.1f M instructions | %.2f* | %.2f* |\n",
-                             ($2 == "float" ? "soft-float" : "fixed"), $3, $4, $5 / 1e6, $6 / 1e6, mhz * 1e6 / $5, mhz * 1e6 / $6 }
-    $1 == "m3"      { printf "| Cortex-M3, QEMU | fixed | %s | %d | %.1f M instructions | %.1f M instructions | %.2f** | %.2f** |\n",
-                             $3, $4, $5 / 1e6, $6 / 1e6, m3mhz * 1e6 / $5, m3mhz * 1e6 / $6 }
-    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed, grid 4 | %s | %d | %.1f M instructions | %.1f M instructions | %.2f / %.2f*** | %.2f / %.2f*** |\n",
-                             $3, $4, $5 / 1e6, $6 / 1e6, m0mhz * 1e6 / $5, m0fast * 1e6 / $5, m0mhz * 1e6 / $6, m0fast * 1e6 / $6 }' "$rows"
+    $1 == "arm926"  { printf "| ARM926, QEMU | %s | %s | %d | %s | %s | %s* | %s* |\n",
+                             ($2 == "float" ? "soft-float" : "fixed"), $3, $4, frame($5, cm[$2]), frame($6, cw[$2]),
+                             fps(mhz, $5, cm[$2]), fps(mhz, $6, cw[$2]) }
+    $1 == "m3"      { printf "| Cortex-M3, QEMU | fixed | %s | %d | %s | %s | %s** | %s** |\n",
+                             $3, $4, frame($5, cm["m3"]), frame($6, cw["m3"]), fps(m3mhz, $5, cm["m3"]), fps(m3mhz, $6, cw["m3"]) }
+    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed, grid 4 | %s | %d | %s | %s | %s / %s*** | %s / %s*** |\n",
+                             $3, $4, frame($5, cm["m0"]), frame($6, cw["m0"]), fps(m0mhz, $5, cm["m0"]), fps(m0fast, $5, cm["m0"]),
+                             fps(m0mhz, $6, cw["m0"]), fps(m0fast, $6, cw["m0"]) }' "$rows"
   echo
-  echo "\\* ARM926 fps: **at a $CLOCK_MHZ MHz clock, assuming one instruction per cycle** (QEMU counts"
-  echo "instructions, not cycles; a real ARM926 spends more cycles than instructions on loads,"
-  echo "multiplies, taken branches and cache misses, so these figures are an upper bound)."
+  echo "The boards' frames: **estimated cycles** (the cycle model of [arm.md](arm.md#cycle-model),"
+  echo "[m3.md](m3.md#cycle-model) and [m0.md](m0.md#cycle-model): each instruction charged its"
+  echo "core's timing table, interlocks, taken branches and the ARM926's caches; an estimate, exact"
+  echo "and repeatable, not a measurement on silicon) with the exact instruction counts in brackets;"
+  echo "their fps are the cycles at the clock, and in brackets the fps if every instruction took one"
+  echo "cycle, an upper bound no real part reaches."
   echo
-  echo "\\*\\* Cortex-M3 fps: **at the LM3S6965's $M3_MHZ MHz, assuming one instruction per cycle**: the"
+  echo "\\* ARM926 fps: **at a $CLOCK_MHZ MHz clock** (an ARM926EJ-S with 16 KiB I- and D-caches)."
+  echo
+  echo "\\*\\* Cortex-M3 fps: **at the LM3S6965's $M3_MHZ MHz**: the"
   echo "intro at the OLED's 128x64, rendered band by band (no frame in RAM), the same frames as the"
   echo "ARM926's; sending the bands to the OLED is not counted (docs/m3.md)."
   echo
   echo "\\*\\*\\* Cortex-M0 fps: **at the nRF51822's $M0_MHZ MHz / at $M0_FAST_MHZ MHz (an RP2040-class"
-  echo "clock), assuming one instruction per cycle**: the same frames at grid 4, the board's default"
+  echo "clock; the RP2040's M0+ has its own, slightly faster, table)**: the same frames at grid 4, the board's default"
   echo "(grid 8's band and working storage do not fit its 16 KiB of RAM), with no long multiply, no"
   echo "divide and no CLZ (docs/m0.md)."
   echo

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# cycles.sh: the cycle model (platform/arm/qemu_profile.c) against hand counts: small ARM926 and Cortex-M3 programs give exactly the cycles and cache misses worked out below, and the intro's frames the board's own instruction counts.
+# cycles.sh: the cycle model (platform/arm/qemu_profile.c) against hand counts: small ARM926, Cortex-M3 and Cortex-M0 programs give exactly the cycles and cache misses worked out below, and the intro's frames the board's own instruction counts.
 #
-# Expects make arm m3 (the plugin build/arm/qemu_profile.so and both intro images). Builds the
-# programs of tests/cycles/arm926.S and tests/cycles/m3.S (one per CASE_*), runs each under
+# Expects make arm m3 m0 (the plugin build/arm/qemu_profile.so and the intro images). Builds the
+# programs of tests/cycles/arm926.S, m3.S and m0.S (one per CASE_*), runs each under
 # qemu-system-arm -icount shift=0 with the plugin's window on its t_start..t_stop part, and
 # compares the plugin's instructions, cycles and D-cache read misses in the window with the
-# figures counted by hand from docs/arm.md's and docs/m3.md's cycle tables (the sums are written
+# figures counted by hand from docs/arm.md's, docs/m3.md's and docs/m0.md's cycle tables (the sums are written
 # out beside each case). Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them), exits 1
 # if any check fails.
 set -u
@@ -29,6 +29,7 @@ cat >"$T/m3.ld" <<'EOF'
 ENTRY(_start)
 SECTIONS { . = 0; .text : { *(.vectors) *(.text*) *(.data*) } . = 0x20000000; .bss : { *(.bss*) } }
 EOF
+cp "$T/m3.ld" "$T/m0.ld"
 
 # run CPU NAME OPTS DEFINES...: builds the case, runs it with plugin options OPTS; sets ins, cyc
 # and dmiss to the window's figures (empty on failure).
@@ -36,11 +37,11 @@ run() {
   local cpu=$1 name=$2 opts=$3 elf=$T/$1-$2.elf out=$T/$1-$2.txt a s e
   shift 3
   ins="" cyc="" dmiss=""
-  if [ "$cpu" = arm926 ]; then
-    a=(-mcpu=arm926ej-s -marm)
-  else
-    a=(-mcpu=cortex-m3 -mthumb)
-  fi
+  case $cpu in
+    arm926) a=(-mcpu=arm926ej-s -marm) ;;
+    m3) a=(-mcpu=cortex-m3 -mthumb) ;;
+    *) a=(-mcpu=cortex-m0 -mthumb) ;;
+  esac
   if ! arm-none-eabi-gcc "${a[@]}" -nostdlib -nostartfiles -T "$T/$cpu.ld" -Wl,--no-warn-rwx-segments \
        "$@" "tests/cycles/$cpu.S" -o "$elf" 2>"$T/$cpu-$name.build"; then
     fail "cycles: $cpu $name does not build: $(head -3 "$T/$cpu-$name.build" | tr '\n' ' ')"
@@ -48,11 +49,11 @@ run() {
   fi
   s=$(arm-none-eabi-nm "$elf" | awk '$3 == "t_start" { print "0x" $1 }')
   e=$(arm-none-eabi-nm "$elf" | awk '$3 == "t_stop" { print "0x" $1 }')
-  if [ "$cpu" = arm926 ]; then
-    m=(-M versatilepb -m 16)
-  else
-    m=(-M lm3s6965evb)
-  fi
+  case $cpu in
+    arm926) m=(-M versatilepb -m 16) ;;
+    m3) m=(-M lm3s6965evb) ;;
+    *) m=(-M microbit) ;;
+  esac
   if ! timeout -k 5 60 qemu-system-arm "${m[@]}" -display none -serial null -monitor none -kernel "$elf" \
        -semihosting-config enable=on,target=native -icount shift=0,align=off,sleep=off \
        -plugin "$PLUGIN,out=$out,cpu=$cpu,start=$s,stop=$e,$opts" </dev/null >"$T/$cpu-$name.log" 2>&1; then
@@ -117,13 +118,23 @@ check m3 loop "" 101 199 0 "MOVS + 50 SUBS + 49 taken BNE x (1 + P) + 1 not take
 check m3 loop-p1 refill=1 101 150 0 "the same with P = 1: 1 + 50 + 49 x 2 + 1" -DCASE_LOOP
 check m3 ldmstm "" 6 33 0 "PUSH 5 regs 6 + POP 4: 5 + POP 1: 2 + LDMIA 3: 4 + STMIA 3: 4 + LDMIA.W 11: 12" -DCASE_LDMSTM
 
+# ---- Cortex-M0 (no caches, no wait states; MULS 1, the single-cycle multiplier) -----------
+check m0 ldchain "" 32 64 0 "32 LDR r0,[r0] at 2" -DCASE_LDCHAIN
+check m0 ldindep "" 32 64 0 "32 independent LDR, still 2 each: no pipelining on the M0" -DCASE_LDINDEP
+check m0 muls "" 16 16 0 "16 MULS at 1" -DCASE_MULS
+check m0 muls32 muls=32 16 512 0 "16 MULS on the small multiplier, muls=32" -DCASE_MULS
+check m0 loop "" 101 199 0 "MOVS + 50 SUBS + 49 taken BNE x 3 + 1 not taken" -DCASE_LOOP
+check m0 ldmstm "" 5 21 0 "PUSH 5 regs 6 + POP 4: 5 + POP 1: 2 + LDMIA 3: 4 + STMIA 3: 4" -DCASE_LDMSTM
+check m0 calls "" 6 23 0 "BL 4 + PUSH 2 regs 3 + POP with the PC 4 + 2 + BL 4 + BX LR 3 + B 3" -DCASE_CALLS
+
 # ---- the intro: the plugin's instructions a frame against the board's icount figures --------
 # The board times each band of a frame from a clock read before it to one after it; the plugin
 # counts from rt_render_band_into's entry to plat_time_ns's: the difference is the same few
 # instructions each band (the calls around the clock reads), seen through the clock's step (125/3
 # ns on the ARM926, 20 ns on the M3). Each band's time is the difference of two readings of that
 # clock, each rounded down to a step, so it is within one step either side of the true count:
-# with B bands a frame (the plugin's windows over its frames: 1 on the ARM926, 8 on the M3), all
+# with B bands a frame (the plugin's windows over its frames: 1 on the ARM926, 8 on the M3, 16 on
+# the M0, whose clock steps 62.5 instructions), all
 # frames' differences lie within 2 B steps of each other, and below 100 B.
 intro() { # BOARD SCRIPT STEP ARGS...
   local board=$1 script=$2 step=$3
@@ -150,5 +161,6 @@ intro() { # BOARD SCRIPT STEP ARGS...
 }
 intro arm926 platform/arm/qemu.sh 42 fixed 400 700 100
 intro m3 platform/m3/qemu.sh 20 0 1200 300
+intro m0 platform/m0/qemu.sh 63 0 1200 300
 
 exit $status

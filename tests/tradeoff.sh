@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tradeoff.sh: accuracy against cost on the intro, one knob at a time, float, fixed and fixed16: host ms and ARM926 instructions per frame; table in docs/tradeoff.md, plot in docs/images/tradeoff.png (make tradeoff).
+# tradeoff.sh: accuracy against cost on the intro, one knob at a time, float, fixed and fixed16: host ms, and ARM926 instructions and estimated cycles per frame; table in docs/tradeoff.md, plot in docs/images/tradeoff.png (make tradeoff).
 #
 # Usage: tests/tradeoff.sh [-o FILE]   (default docs/tradeoff.md and docs/images/tradeoff.png;
 #                                       with QUICK=1 build/tradeoff/tradeoff-quick.md and .png)
@@ -12,9 +12,11 @@
 # Error: rt-cmp against the reference (rt-float --mode full --min-contrib 0 --depth 8).
 # ARM926: then every configuration renders the same frames on the emulated board
 # (platform/arm/qemu.sh bench with the same settings, one frame per run): the fixed (fixed16)
-# image for the fixed (fixed16) rows, the soft-float image for the float rows; exact counts. Grids 2
-# and 16 do not fit the board's RAM (n/a). Without qemu-system-arm the ARM columns stay empty,
-# with a note (ARM=0 does the same).
+# image for the fixed (fixed16) rows, the soft-float image for the float rows; exact counts, and
+# the cycle model's cycles beside them (docs/arm.md, Cycle model): the board's panel of the plot
+# and its Pareto front are by the estimated time a frame at ARM_MHZ (default 200) MHz, cycles
+# divided by the clock. Grids 2 and 16 do not fit the board's RAM (n/a). Without qemu-system-arm
+# the ARM columns stay empty, with a note (ARM=0 does the same).
 # Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 42 configurations, about
 # 3 minutes on the 2-core build machine (host timing 35 s, ARM926 2.5 minutes, mostly the
 # soft-float image). QUICK=1: two configurations on one frame, one round, the board's fixed
@@ -80,6 +82,8 @@ mkdir -p "$(dirname "$out")" "$(dirname "$plot")"
 
 # The ARM926 column: skipped, with a note, only when QEMU is not installed (or ARM=0).
 FPS=$(awk '$1 == "fps" { print $2 }' scenes/intro.scene)
+MHZ=${ARM_MHZ:-200}
+[[ "$MHZ" =~ ^[1-9][0-9]*$ ]] || die "ARM_MHZ must be a whole number of MHz, 1 or more, not '$MHZ'"
 arm=1 arm_note=""
 if [ "${ARM:-1}" = 0 ]; then
   arm=0 arm_note="ARM=0 was given: the ARM926 columns are left empty."
@@ -153,24 +157,25 @@ took=$(($(date +%s) - start))
 # ARM926: every configuration on the same frames, one QEMU run per frame (qemu.sh bench N N 1),
 # after the host timings so as not to disturb them. The board's fixed default is the base of
 # the "x ARM fixed default" column; QUICK=1 measures it apart, as it is not one of its rows.
-armt=$work/arm.tsv   # run (or base), time, instructions, or n/a where the board refuses
+armt=$work/arm.tsv   # run (or base), time, instructions, cycles; n/a n/a where the board refuses
 : >"$armt"
 arm_run() { # key real options
-  local t f out st n
+  local t f out st n c
   for t in $times; do
     f=$(frame_of "$t")
     # shellcheck disable=SC2086  # options are words on purpose
     out=$(platform/arm/qemu.sh bench "$2" $3 "$f" "$f" 1 2>&1) && st=0 || st=$?
-    n=$(sed -n "s/^frame=$f instructions=\([0-9]*\) .*/\1/p" <<<"$out")
-    if [ "$st" = 0 ] && [ -n "$n" ]; then
-      echo "tradeoff: ARM926 $2 ${3:-(defaults)}, frame $f: $n instructions" >&2
+    n=$(sed -n "s/^frame=$f instructions=\([0-9]*\) cycles=[0-9]*$/\1/p" <<<"$out")
+    c=$(sed -n "s/^frame=$f instructions=[0-9]* cycles=\([0-9]*\)$/\1/p" <<<"$out")
+    if [ "$st" = 0 ] && [ -n "$n" ] && [ -n "$c" ]; then
+      echo "tradeoff: ARM926 $2 ${3:-(defaults)}, frame $f: $n instructions, $c cycles" >&2
     elif [ "$st" = 2 ] && grep -q "working storage holds grids" <<<"$out"; then
       echo "tradeoff: ARM926 $2 $3: not on the board ($(grep -o 'holds grids.*' <<<"$out"))" >&2
-      n=n/a
+      n=n/a c=n/a
     else
       die "ARM926 $2 image, bench $3 $f $f 1 failed: $(tr '\n' ' ' <<<"$out")"
     fi
-    printf '%s\t%s\t%s\n' "$1" "$t" "$n" >>"$armt"
+    printf '%s\t%s\t%s\t%s\n' "$1" "$t" "$n" "$c" >>"$armt"
   done
 }
 arm_start=$(date +%s)
@@ -192,8 +197,9 @@ took_arm=$(($(date +%s) - arm_start))
 # One row per configuration: run index, real, name, options, mean ms, worst-frame ms, mean PSNR
 # (of the mean squared error over the frames), worst-frame PSNR, over8 % of all pixels, worst
 # frame's over8 %, Pareto fronts, ARM926 mean instructions (M; n/a; empty without the board),
-# x the board's fixed default. Fronts: desktop (all rows, by host ms), board (the rows counted
-# on the ARM926, by instructions).
+# x the board's fixed default (by cycles), ARM926 mean cycles (M), the estimated ms a frame at
+# MHZ, cycles per instruction. Fronts: desktop (all rows, by host ms), board (the rows counted on
+# the ARM926, by estimated cycles).
 labels=$work/labels.tsv
 for k in "${!runs[@]}"; do
   read -r real ci <<<"${runs[$k]}"
@@ -201,12 +207,12 @@ for k in "${!runs[@]}"; do
   printf '%s\t%s\t%s\t%s\n' "$k" "$real" "${CONFIGS[$ci]%%|*}" "${opts:-(none)}"
 done >"$labels"
 rows=$work/rows.tsv
-awk -F'\t' -v OFS='\t' -v base_key="$base_key" -v basef="$work/arm-base" '
+awk -F'\t' -v OFS='\t' -v base_key="$base_key" -v basef="$work/arm-base" -v mhz="$MHZ" '
   FILENAME == ARGV[1] { real[$1] = $2; name[$1] = $3; opts[$1] = $4; n++; next }
   FILENAME == ARGV[2] {   # cost: per frame the mean over rounds
     fs[$1 SUBSEP $2] += $4; fc[$1 SUBSEP $2]++; sum[$1] += $4; cnt[$1]++; next }
   FILENAME == ARGV[4] {   # ARM926 instructions
-    if ($3 == "n/a") na[$1] = 1; else { asum[$1] += $3; acnt[$1]++ }
+    if ($3 == "n/a") na[$1] = 1; else { asum[$1] += $3; csum[$1] += $4; acnt[$1]++ }
     next }
   {                       # error
     mse = ($3 == "inf") ? 0 : 65025 * 10 ^ (-$3 / 10)
@@ -219,37 +225,42 @@ awk -F'\t' -v OFS='\t' -v base_key="$base_key" -v basef="$work/arm-base" '
   END {
     for (key in fs) { split(key, kt, SUBSEP); m = fs[key] / fc[key]; if (m > wms[kt[1]]) wms[kt[1]] = m }
     abase = (base_key in acnt) ? asum[base_key] / acnt[base_key] : 0
-    printf "%s\n", (abase > 0 ? sprintf("%.1f", abase / 1e6) : "") > basef
+    cbase = (base_key in acnt) ? csum[base_key] / acnt[base_key] : 0
+    printf "%s\t%s\t%s\n", (abase > 0 ? sprintf("%.1f", abase / 1e6) : ""), (cbase > 0 ? sprintf("%.1f", cbase / 1e6) : ""),
+      (cbase > 0 ? sprintf("%.0f", cbase / (mhz * 1e3)) : "") > basef
     for (k = 0; k < n; k++) {
       ms[k] = sum[k] / cnt[k]
       mse = msum[k] / nf[k]
       ps[k] = (mse == 0) ? 1e9 : 10 * log(65025 / mse) / log(10)
       onb[k] = (k in acnt) && !(k in na)
-      if (onb[k]) ai[k] = asum[k] / acnt[k]
+      if (onb[k]) { ai[k] = asum[k] / acnt[k]; ac[k] = csum[k] / acnt[k] }
     }
     for (k = 0; k < n; k++) {
       desk = 1; board = onb[k]
       for (j = 0; j < n; j++) {
         if (j == k) continue
         if (ms[j] <= ms[k] && ps[j] >= ps[k] && (ms[j] < ms[k] || ps[j] > ps[k])) desk = 0
-        if (board && onb[j] && ai[j] <= ai[k] && ps[j] >= ps[k] && (ai[j] < ai[k] || ps[j] > ps[k])) board = 0
+        if (board && onb[j] && ac[j] <= ac[k] && ps[j] >= ps[k] && (ac[j] < ac[k] || ps[j] > ps[k])) board = 0
       }
       front = (desk && board) ? "desktop, board" : desk ? "desktop" : board ? "board" : ""
       am = onb[k] ? sprintf("%.1f", ai[k] / 1e6) : (k in na) ? "n/a" : ""
-      ax = (onb[k] && abase > 0) ? sprintf("%.2f", ai[k] / abase) : ""
-      printf "%d\t%s\t%s\t%s\t%.3f\t%.3f\t%s\t%s\t%.3f\t%.3f\t%s\t%s\t%s\n", k, real[k], name[k], opts[k], ms[k], wms[k],
+      ax = (onb[k] && cbase > 0) ? sprintf("%.2f", ac[k] / cbase) : ""
+      cm = onb[k] ? sprintf("%.1f", ac[k] / 1e6) : (k in na) ? "n/a" : ""
+      cms = onb[k] ? sprintf("%.0f", ac[k] / (mhz * 1e3)) : (k in na) ? "n/a" : ""
+      cpi = onb[k] ? sprintf("%.2f", ac[k] / ai[k]) : (k in na) ? "n/a" : ""
+      printf "%d\t%s\t%s\t%s\t%.3f\t%.3f\t%s\t%s\t%.3f\t%.3f\t%s\t%s\t%s\t%s\t%s\t%s\n", k, real[k], name[k], opts[k], ms[k], wms[k],
         (ps[k] >= 1e9 ? "inf" : sprintf("%.2f", ps[k])), (worst[k] >= 1e9 ? "inf" : sprintf("%.2f", worst[k])),
-        100 * osum[k] / pix[k], 100 * ow[k], front, am, ax
+        100 * osum[k] / pix[k], 100 * ow[k], front, am, ax, cm, cms, cpi
     }
   }' "$labels" "$cost" "$err" "$armt" >"$rows"
-arm_base=$(cat "$work/arm-base")
+IFS=$'\t' read -r arm_base arm_base_cyc arm_base_ms <"$work/arm-base" || true
 
 # The plot: mean PSNR against the cost, float and fixed points labelled, the fronts drawn; with
-# the ARM926 counts, a second panel against instructions per frame on the board.
+# the ARM926 counts, a second panel against the board's estimated ms per frame (cycles / clock).
 # Configurations with no error at all (PSNR inf) are drawn at the top edge, marked inf.
-pdat=$work/plot.dat   # ms, PSNR (inf: at the top), real, label, desktop front, board front, ARM M
+pdat=$work/plot.dat   # ms, PSNR (inf: at the top), real, label, desktop front, board front, ARM est. ms
 awk -F'\t' '
-  { ms[NR] = $5; ps[NR] = $7; real[NR] = $2; name[NR] = $3; front[NR] = $11; am[NR] = $12
+  { ms[NR] = $5; ps[NR] = $7; real[NR] = $2; name[NR] = $3; front[NR] = $11; am[NR] = $15
     if ($7 != "inf" && (top == "" || $7 + 0 > top)) top = $7 + 0 }
   END {
     if (top == "") top = 50
@@ -261,7 +272,7 @@ awk -F'\t' '
     }
   }' "$rows" >"$pdat"
 # Each panel: the points by build, its front as a line, the points labelled. Its data are the
-# rows sorted by the panel's cost (column $3: 1 host ms, 7 ARM926 instructions), so that the
+# rows sorted by the panel's cost (column $3: 1 host ms, 7 ARM926 estimated ms), so that the
 # front is drawn from left to right.
 panel() { # title xlabel x-column legend-float legend-fixed front-column front-title line-style
   local data=$pdat.$3
@@ -294,8 +305,8 @@ EOF
   if [ "$arm" = 1 ]; then
     echo 'set logscale x'
     echo 'set autoscale xfix'   # no widening to the next power of ten: the offsets give the room
-    echo 'set xtics (100, 150, 200, 300, 500, 700, 1000, 1500, 2000, 3000, 5000)'
-    panel "FPU-less ARM926 (QEMU): instructions per frame" "ARM926 million instructions per frame (mean, log scale)" 7 \
+    echo 'set xtics (100, 150, 200, 300, 500, 700, 1000, 1500, 2000, 3000, 5000, 7000, 10000, 15000)'
+    panel "FPU-less ARM926 (QEMU, cycle model): estimated ms per frame at $MHZ MHz" "ARM926 estimated ms per frame at $MHZ MHz (cycles / clock, mean, log scale)" 7 \
       "soft-float image" "fixed image" 6 "Pareto front (board)" 'dt 2 lc rgb "#ff7f0e"'
     echo 'unset multiplot'
   fi
@@ -316,37 +327,40 @@ for t in $times; do arm_frames+="${arm_frames:+, }$(frame_of "$t" || true)"; don
   echo "- Frames: the intro at t = ${times// /, } s, $SIZE; $rounds round(s), each frame rendered by every configuration in turn (the order reversed every other round)"
   echo "- Reference: \`rt-float render $REF_OPTS\` (every pixel, every ray, the deepest recursion)"
   if [ "$arm" = 1 ]; then
-    echo "- ARM926 (\`qemu-system-arm -M versatilepb -icount shift=0\`: exact instruction counts): the same frames ($arm_frames) with the same settings, \`platform/arm/qemu.sh bench fixed|float|fixed16 SETTINGS N N 1\`; the fixed image with the default settings: $arm_base M instructions per frame"
+    echo "- ARM926 (\`qemu-system-arm -M versatilepb -icount shift=0\`: exact instruction counts, and the cycle model's estimate, [arm.md](arm.md#cycle-model)): the same frames ($arm_frames) with the same settings, \`platform/arm/qemu.sh bench fixed|float|fixed16 SETTINGS N N 1\`; the fixed image with the default settings: $arm_base M instructions and $arm_base_cyc M estimated cycles per frame, $arm_base_ms ms at $MHZ MHz"
   else
     echo "- ARM926: not measured in this run. $arm_note"
   fi
   echo
   echo "![PSNR against cost per frame]($plot_rel)"
   echo
-  echo "| build | configuration | render options | mean ms | worst-frame ms | x float default | ARM Minstr/frame | x ARM fixed default | mean PSNR | worst PSNR | over8 | worst-frame over8 | Pareto front |"
-  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
+  echo "| build | configuration | render options | mean ms | worst-frame ms | x float default | ARM est. ms at $MHZ MHz | x ARM fixed default | ARM Mcycles/frame | ARM Minstr/frame | ARM CPI | mean PSNR | worst PSNR | over8 | worst-frame over8 | Pareto front |"
+  echo "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
   awk -F'\t' -v base="$base_ms" '{
     x = (base > 0) ? sprintf("%.2f", $5 / base) : ""
     o = ($4 == "(none)") ? "(none)" : "`" $4 "`"
-    printf "| %s | %s | %s | %.2f | %.2f | %s | %s | %s | %s dB | %s dB | %.3f %% | %.3f %% | %s |\n",
-      $2, $3, o, $5, $6, x, $12, $13, $7, $8, $9, $10, $11 }' "$rows"
+    printf "| %s | %s | %s | %.2f | %.2f | %s | %s | %s | %s | %s | %s | %s dB | %s dB | %.3f %% | %.3f %% | %s |\n",
+      $2, $3, o, $5, $6, x, $15, $13, $14, $12, $16, $7, $8, $9, $10, $11 }' "$rows"
   echo
   echo "Every configuration changes one option of \`rt-float\`/\`rt-fixed\`/\`rt-fixed16 render\` from the intro's"
   echo "default (adaptive, \`--grid 8 --threshold 0.0625\`, the scene's depth 5, \`--min-contrib 0.01\`,"
   echo "each noise texture's own octaves: 4 for marble and lava, 3 for wood)."
   echo "**ms**: the tracer's own time per frame on one thread (\`--threads 1 --stats\`, its \`ms=\`:"
   echo "rendering, without writing the file), mean over frames and rounds; worst-frame: the slowest"
-  echo "frame's mean over rounds. **ARM Minstr/frame**: million instructions per frame on the"
-  echo "FPU-less ARM926 under QEMU, mean over the frames, counted across the board's \`rt_render\`:"
+  echo "frame's mean over rounds. **ARM est. ms**: the FPU-less ARM926's estimated time per frame"
+  echo "at $MHZ MHz, its **Mcycles/frame** (million cycles a frame, mean over the frames: the cycle"
+  echo "model's estimate, an ARM926EJ-S with 16 KiB I- and D-caches, [arm.md](arm.md#cycle-model))"
+  echo "divided by the clock; **ARM Minstr/frame**: million instructions per frame under QEMU (exact),"
+  echo "and **CPI** the cycles per instruction; counted across the board's rendering:"
   echo "the fixed (fixed16) image for the fixed (fixed16) rows, the soft-float image (the float build compiled with"
   echo "\`-mfloat-abi=soft\`) for the float rows; n/a: grids 2 and 16 need more working storage"
   echo "than the board's 32 KiB RAM budget holds, and it refuses them. **x ARM fixed default**:"
-  echo "against the fixed image with the default settings. **PSNR** (\`rt-cmp\` against the"
+  echo "the estimated cycles against the fixed image's with the default settings. **PSNR** (\`rt-cmp\` against the"
   echo "reference): mean is the PSNR of the mean squared error over the frames (so a frame without"
   echo "error does not make it infinite), worst is the lowest frame's; inf means identical"
   echo "pictures. **over8**: pixels with a channel off by more than 8 of 255, as a share of all"
   echo "pixels, and of the worst frame's. **Pareto front**: no other configuration is both as cheap"
-  echo "and as accurate: \`desktop\` by host ms among all rows, \`board\` by ARM926 instructions"
+  echo "and as accurate: \`desktop\` by host ms among all rows, \`board\` by the ARM926's estimated cycles"
   echo "among the rows the board ran (all three images). **fixed16** is the cheaper fixed variant: unit"
   echo "vectors in Q16.16 instead of Q2.30 (\`-DFX_UNIT_FRAC=16\`, docs/numerics.md)."
   echo
@@ -361,7 +375,7 @@ for t in $times; do arm_frames+="${arm_frames:+, }$(frame_of "$t" || true)"; don
   echo '```'
   echo
   echo "The times depend on what else the machine is doing (see the load average above); the"
-  echo "PSNR, over8 and ARM926 figures do not, and repeat exactly."
+  echo "PSNR, over8 and ARM926 figures (instructions and the model's cycles) do not, and repeat exactly."
 } >"$out"
 echo "tradeoff: wrote $out and $plot (host timings $took s, ARM926 $took_arm s)" >&2
 cat "$out"

@@ -58,6 +58,7 @@ case "$cmd" in
       die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-frames renders frames to files instead"
     fi
     echo "qemu: playing the $real intro at 320x240 on the emulated PL110; close the window or press Ctrl-C in this terminal to stop"
+    echo "qemu: the intro's \`fps=\` lines are the emulator's speed on this host, not the board's; the board's estimated fps (cycle model): platform/arm/qemu.sh bench $real 0 1200 24"
     exec qemu-system-arm "${common[@]}" -semihosting-config "$(semihosting play "${settings[@]}")"
     ;;
   frames)

@@ -1,12 +1,13 @@
-/* qemu_profile.c: a QEMU TCG plugin that counts guest instructions and estimates their cycles (ARM926EJ-S or Cortex-M3 timing tables, ARM926 caches), per address, per frame and in all.
+/* qemu_profile.c: a QEMU TCG plugin that counts guest instructions and estimates their cycles (ARM926EJ-S, Cortex-M3 or Cortex-M0 timing tables, ARM926 caches), per address, per frame and in all.
  *
- * Loaded by platform/arm/qemu.sh and platform/m3/qemu.sh (frames, bench) and platform/arm/profile.sh
- * (make qemu-profile) into qemu-system-arm 7.2 with
- *   -plugin build/arm/qemu_profile.so,out=FILE[,cpu=arm926|m3][,start=ADDR,stop=ADDR][,frame=ADDR]
+ * Loaded by platform/arm/qemu.sh, platform/m3/qemu.sh and platform/m0/qemu.sh (frames, bench) and
+ * platform/arm/profile.sh (make qemu-profile) into qemu-system-arm 7.2 with
+ *   -plugin build/arm/qemu_profile.so,out=FILE[,cpu=arm926|m3|m0][,start=ADDR,stop=ADDR][,frame=ADDR]
  *           [,icache=BYTES][,dcache=BYTES][,ways=N][,line=BYTES][,repl=rr|lru|random]
- *           [,imiss=CYCLES][,dmiss=CYCLES][,refill=CYCLES][,lmul=CYCLES][,div=CYCLES]
+ *           [,imiss=CYCLES][,dmiss=CYCLES][,refill=CYCLES][,lmul=CYCLES][,div=CYCLES][,muls=CYCLES]
  * Every executed instruction is charged the cycles of its class in the core's timing table
- * (docs/arm.md and docs/m3.md, section "Cycle model", give the tables and their sources). The
+ * (docs/arm.md, docs/m3.md and docs/m0.md, section "Cycle model", give the tables and their
+ * sources). The
  * plugin sees each instruction's bytes when QEMU translates it and, when it runs, which
  * instruction runs next and how many memory accesses it made: that settles taken or not taken
  * for branches, whether a conditional load or store executed, and (ARM926) the load-use and
@@ -86,7 +87,7 @@ __attribute__((visibility("default"))) int qemu_plugin_install(qemu_plugin_id_t 
                                                                char **argv);
 
 /* ---- what the timing tables need of one instruction, decoded at translation ------------ */
-enum { CPU_ARM926, CPU_M3 };
+enum { CPU_ARM926, CPU_M3, CPU_M0 };
 
 /* kinds */
 #define K_BRANCH 1u /* may change the flow: taken when the next address is not the next insn */
@@ -113,6 +114,7 @@ static int cyc_cpu = CPU_ARM926;
 static unsigned cyc_refill = 2; /* M3: the P of the timing table, a pipeline refill */
 static unsigned cyc_lmul = 5;   /* M3: UMULL/SMULL (3-5 with early termination); MLAL + 2 */
 static unsigned cyc_div = 12;   /* M3: SDIV/UDIV (2-12 with early termination) */
+static unsigned cyc_muls = 1; /* M0: MULS, 1 on the single-cycle multiplier, 32 on the small one */
 
 static unsigned popcount16(uint32_t v)
 {
@@ -410,11 +412,55 @@ static void dec_t32_m3(uint32_t hw1, uint32_t hw2, cyc_insn *d)
     /* data processing (immediate, shifted register, register) one cycle */
 }
 
+/* Cortex-M0, ARMv6-M 16-bit Thumb (Cortex-M0 TRM, instruction set summary: zero wait states).
+ * No pipelining of neighbouring loads and stores, no branch folding: the table as it stands. */
+static void dec_t16_m0(uint32_t h, cyc_insn *d)
+{
+    d->base = 1;
+    if ((h >> 10) == 0x10u) { /* data processing: MULS by the multiplier, the rest 1 */
+        if (((h >> 6) & 15u) == 13u)
+            d->base = (uint8_t)cyc_muls;
+    } else if ((h >> 10) == 0x11u) { /* high-register ADD/CMP/MOV, BX/BLX: 3 when writing the PC */
+        unsigned op = (h >> 8) & 3u, rd = (h & 7u) | ((h >> 4) & 8u);
+        if (op == 3u || (rd == 15u && op != 1u))
+            d->kind = K_BRANCH, d->taken = 3;
+    } else if ((h >> 11) == 9u || (h >> 12) == 5u || (h >> 13) == 3u || (h >> 12) == 8u ||
+               (h >> 12) == 9u) { /* LDR literal, loads and stores: 2 */
+        d->kind = K_MEM, d->base = 2;
+    } else if ((h & 0xf600u) == 0xb400u) { /* PUSH, POP: 1 + N; POP with the PC 4 + N */
+        unsigned n = popcount16(h & 0x1ffu);
+        d->kind = K_MEM, d->base = (uint8_t)(1 + n);
+        if ((h & 0x900u) == 0x900u)
+            d->kind |= K_BRANCH, d->taken = (uint8_t)(4 + n);
+    } else if ((h >> 12) == 12u) { /* LDMIA, STMIA: 1 + N */
+        d->kind = K_MEM, d->base = (uint8_t)(1 + popcount16(h & 0xffu));
+    } else if ((h >> 12) == 13u) { /* conditional branch 1 or 3 taken; SVC */
+        if (((h >> 8) & 15u) < 14u)
+            d->kind = K_BRANCH, d->taken = 3;
+    } else if ((h >> 11) == 0x1cu) { /* B */
+        d->kind = K_BRANCH, d->taken = 3;
+    }
+    /* the rest (shifts, add/subtract, immediates, ADD SP, ADR, extends, REV, CPS, hints) 1 */
+}
+
+/* Cortex-M0, the 32-bit encodings ARMv6-M has: BL 4; MRS, MSR, DMB, DSB, ISB 4. */
+static void dec_t32_m0(uint32_t hw1, uint32_t hw2, cyc_insn *d)
+{
+    d->base = 4;
+    if ((hw1 & 0xf800u) == 0xf000u && (hw2 & 0xd000u) == 0xd000u) /* BL */
+        d->kind = K_BRANCH, d->taken = 4;
+}
+
 static void cyc_decode(const uint8_t *b, size_t size, int thumb, cyc_insn *d)
 {
     uint32_t h0 = (uint32_t)b[0] | (uint32_t)b[1] << 8;
     uint32_t h1 = size == 4 ? ((uint32_t)b[2] | (uint32_t)b[3] << 8) : 0;
-    if (cyc_cpu == CPU_M3) {
+    if (cyc_cpu == CPU_M0) {
+        if (size == 2)
+            dec_t16_m0(h0, d);
+        else
+            dec_t32_m0(h0, h1, d);
+    } else if (cyc_cpu == CPU_M3) {
         if (size == 2)
             dec_t16_m3(h0, d);
         else
@@ -660,7 +706,7 @@ static void prof_translate(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     size_t n = qemu_plugin_tb_n_insns(tb);
     /* ARM926: a block is all ARM or all Thumb; a Thumb block holds a 2-byte instruction, or is
      * one BL/BLX pair (QEMU runs the two halves as one 4-byte instruction) */
-    int thumb = cyc_cpu == CPU_M3;
+    int thumb = cyc_cpu != CPU_ARM926;
     for (size_t i = 0; i < n && !thumb; i++)
         if (qemu_plugin_insn_size(qemu_plugin_tb_get_insn(tb, i)) == 2)
             thumb = 1;
@@ -708,9 +754,11 @@ static void prof_exit(qemu_plugin_id_t id, void *udata)
             "\nwindow_dmiss %" PRIu64 "\nwindow_imiss %" PRIu64 "\nrun_total %" PRIu64
             "\nrun_cycles %" PRIu64 "\nwindow_interlock %" PRIu64 "\nwindow_branch %" PRIu64
             "\nwindow_multi %" PRIu64 "\nwindow_ifill %" PRIu64 "\nwindow_dfill %" PRIu64 "\n",
-            cyc_cpu == CPU_M3 ? "m3" : "arm926", prof_windows, win_insns, win_cycles, win_dmiss,
-            win_imiss, run_insns, run_cycles, win_interlock, win_branch, win_multi, win_ifill,
-            win_dfill);
+            cyc_cpu == CPU_M0       ? "m0"
+                : cyc_cpu == CPU_M3 ? "m3"
+                                    : "arm926",
+            prof_windows, win_insns, win_cycles, win_dmiss, win_imiss, run_insns, run_cycles,
+            win_interlock, win_branch, win_multi, win_ifill, win_dfill);
     for (size_t i = 0; i < fr_n; i++)
         fprintf(f, "frame %" PRIu64 " %" PRIu64 " %" PRIu64 " %" PRIu64 "\n", fr_list[i][0],
                 fr_list[i][1], fr_list[i][2], fr_list[i][3]);
@@ -757,6 +805,8 @@ int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, 
             cyc_cpu = CPU_ARM926;
         } else if (strcmp(a, "cpu=m3") == 0) {
             cyc_cpu = CPU_M3;
+        } else if (strcmp(a, "cpu=m0") == 0) {
+            cyc_cpu = CPU_M0;
         } else if (strcmp(a, "repl=rr") == 0 || strcmp(a, "repl=lru") == 0 ||
                    strcmp(a, "repl=random") == 0) {
             cyc_repl = a[5] == 'r' && a[6] == 'r' ? REPL_RR : a[5] == 'l' ? REPL_LRU : REPL_RANDOM;
@@ -769,12 +819,13 @@ int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, 
                    prof_opt(a, "imiss", 200, &cyc_ic.miss) ||
                    prof_opt(a, "dmiss", 200, &cyc_dc.miss) ||
                    prof_opt(a, "refill", 3, &cyc_refill) || prof_opt(a, "lmul", 7, &cyc_lmul) ||
-                   prof_opt(a, "div", 12, &cyc_div)) {
+                   prof_opt(a, "div", 12, &cyc_div) || prof_opt(a, "muls", 32, &cyc_muls)) {
         } else {
             fprintf(stderr,
                     "qemu_profile: error: unknown or malformed argument '%s' (out=FILE, "
-                    "cpu=arm926|m3, start=ADDR, stop=ADDR, frame=ADDR, icache=, dcache=, ways=, "
-                    "line=, repl=rr|lru|random, imiss=, dmiss=, refill=1..3, lmul=..7, div=..12)\n",
+                    "cpu=arm926|m3|m0, start=ADDR, stop=ADDR, frame=ADDR, icache=, dcache=, ways=, "
+                    "line=, repl=rr|lru|random, imiss=, dmiss=, refill=1..3, lmul=..7, div=..12, "
+                    "muls=..32)\n",
                     a);
             return -1;
         }
@@ -783,7 +834,8 @@ int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_t *info, int argc, 
         fprintf(stderr, "qemu_profile: error: wants out=FILE, and start=ADDR with stop=ADDR\n");
         return -1;
     }
-    if (cyc_cpu == CPU_M3) /* the LM3S6965 has no caches; its flash is single-cycle at 50 MHz */
+    /* the LM3S6965 and the nRF51 have no caches; their flash needs no wait states at 50 and 16 MHz */
+    if (cyc_cpu != CPU_ARM926)
         cyc_ic.size = cyc_dc.size = 0;
     cyc_ic.ways = cyc_dc.ways = ways;
     cyc_ic.line = cyc_dc.line = line;

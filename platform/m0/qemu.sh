@@ -11,11 +11,14 @@
 # no display: frames leave band by band through semihosting. Both commands run under
 # `-icount shift=0` (one guest instruction = 1 ns of virtual time; the SysTick steps 62.5 ns at
 # the chip's 16 MHz, so a frame's count is exact to within 63 instructions a band, the same on
-# every run) and print `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and
-# the guest's RAM use (`ram: ...`). A frame is byte for byte
+# every run) and print `frame=N instructions=M cycles=C` per frame, then `frames=K mean=M cycles=C`,
+# `worst=M cycles=C`, a `cycles:` line (cycles per instruction, estimated fps at the nRF51's 16 MHz
+# and at 133 MHz, an RP2040-class clock) and the guest's RAM use (`ram: ...`). The cycles are the
+# Cortex-M0 timing model's estimate (the TCG plugin build/arm/qemu_profile.so with cpu=m0,
+# platform/qemu-cycles.sh; docs/m0.md, Cycle model), exact and repeatable like the counts;
+# QEMU_CYCLES_OPTS and QEMU_CYCLES_OUT as for platform/arm/qemu.sh. A frame is byte for byte
 # `build/rt-fixed render --size 128x64 --grid 4 --frame N` (with the same settings). The exit
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
-# With QEMU_PLUGIN=FILE.so,ARGS QEMU loads that TCG plugin (make qemu-profile REAL=m0).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -53,14 +56,23 @@ case "$cmd" in
   *) die "unknown command '$cmd'; $usage" ;;
 esac
 
-plugin=()
-[ -z "${QEMU_PLUGIN:-}" ] || plugin=(-plugin "$QEMU_PLUGIN")
+# the cycle estimate: the timing plugin, its figures merged into the guest's lines afterwards
+. platform/qemu-cycles.sh
+cycles_plugin "$elf" m0
+CYCLES_MHZ="16 133"
+guest_log=$(mktemp)
+trap 'rm -f "$guest_log"; [ -n "${QEMU_CYCLES_OUT:-}" ] || rm -f "$cycles_out"' EXIT
 status=0
 # --foreground: QEMU stays in the terminal's process group; no stdin.
 timeout --foreground -k 10 "$timeout_s" qemu-system-arm -M microbit -kernel "$elf" -display none \
-  -serial stdio -monitor none -icount shift=0,align=off,sleep=off ${plugin[@]+"${plugin[@]}"} \
-  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null ||
+  -serial stdio -monitor none -icount shift=0,align=off,sleep=off "${plugin[@]}" \
+  -semihosting-config "$(semihosting "$cmd" ${settings[@]+"${settings[@]}"} "$@")" </dev/null >"$guest_log" ||
   status=$?
+if [ "$status" -eq 0 ]; then
+  cycles_merge "$guest_log" || status=1
+else
+  cat "$guest_log"
+fi
 if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
   echo "qemu.sh: error: the M0 guest did not finish within $timeout_s s (hung?); QEMU stopped" >&2
   exit 1

@@ -55,6 +55,7 @@ case "$cmd" in
       die "no display (DISPLAY is not set): QEMU's window needs one; make qemu-m3-frames renders frames to files instead"
     fi
     echo "qemu: playing the intro at 128x64 on the emulated OLED (16 greys); close the window or press Ctrl-C in this terminal to stop"
+    echo "qemu: the intro's \`fps=\` lines are the emulator's speed on this host, not the board's; the board's estimated fps (cycle model): platform/m3/qemu.sh bench 0 1200 24"
     exec qemu-system-arm "${common[@]}" -serial stdio -semihosting-config "$(semihosting play ${settings[@]+"${settings[@]}"})" \
       2> >(sed -u '/Timer with period zero, disabling/d' >&2)
     ;;
