@@ -12,6 +12,7 @@
 
 #include "knobs.h"
 #include "rt_local.h"
+#include "subsample.h"
 
 /* The default threshold of the programs (knobs.h). */
 static const knobs ts_knobs = KNOBS_DEFAULTS;
@@ -1659,6 +1660,106 @@ static void test_noise_pixels(void **state)
     assert_true(w_coarse > bound_worst || o_coarse > bound_over8);
 }
 
+/* ss_noise_seen on constructed records, its decisions known in closed form: object 1 has a noise
+ * texture, objects 0 and 3 are flat (a plane, a sphere around the eye), object 2 is not. A square
+ * whose corners agree is split where a noise node's contribution at some corner exceeds twice
+ * the threshold and its parent (the last node before it a level up) is flat. */
+static void test_noise_seen(void **state)
+{
+    (void)state;
+    ss_ctx c = {.thr8 = 16, .noise_beyond = 1u << 1, .flat_view = 1u << 0 | 1u << 3};
+    rt_sample a;
+    memset(&a, 0, sizeof a);
+    a.nhits = 2;
+    a.hits[0] = (rt_hit_rec){.object = 0, .level = 0, .contrib = {10, 10, 10}};
+    a.hits[1] = (rt_hit_rec){.object = 1, .level = 1, .contrib = {32, 32, 32}};
+    rt_sample b = a;
+    const rt_sample *k[4] = {&a, &a, &a, &b};
+    assert_int_equal(ss_noise_seen(&c, k), 0); /* 2 x 16: not over twice the threshold */
+    b.hits[1].contrib[2] = 33;                 /* one channel of one corner over it */
+    assert_int_equal(ss_noise_seen(&c, k), 1);
+    c.noise_beyond = 0; /* the same node on a plain object */
+    assert_int_equal(ss_noise_seen(&c, k), 0);
+    c.noise_beyond = 1u << 1;
+    a.hits[0].object = b.hits[0].object = 2; /* seen off a sphere from outside */
+    assert_int_equal(ss_noise_seen(&c, k), 0);
+    /* a deeper node: its parent is the node a level up just before it, not an earlier one */
+    a.nhits = b.nhits = 5;
+    a.hits[1] = (rt_hit_rec){.object = 3, .level = 1, .contrib = {5, 5, 5}};
+    a.hits[2] = (rt_hit_rec){.object = 2, .level = 1, .contrib = {5, 5, 5}};
+    a.hits[3] = (rt_hit_rec){.object = 1, .level = 2, .contrib = {90, 90, 90}};
+    a.hits[4] = (rt_hit_rec){.object = 0, .level = 2, .contrib = {5, 5, 5}};
+    memcpy(b.hits, a.hits, sizeof a.hits);
+    assert_int_equal(ss_noise_seen(&c, k), 0); /* its parent is object 2 */
+    a.hits[2].object = b.hits[2].object = 3;
+    assert_int_equal(ss_noise_seen(&c, k), 1); /* now object 3 */
+    /* a node only some corners have (a faint difference of the trees) is read where it is */
+    b.nhits = 3;
+    a.hits[3].contrib[0] = a.hits[3].contrib[1] = a.hits[3].contrib[2] = 20;
+    assert_int_equal(ss_noise_seen(&c, k), 0);
+}
+
+/* A marble wall seen through a clear pane (a plane of index 1 that transmits everything and adds
+ * no colour of its own): in full mode every pixel shows what it shows without the pane (its
+ * refracted ray goes straight on), so the texture lies beyond the primary hit, where the noise
+ * pixels (ss_noise) do not reach. Adaptive mode splits the squares whose corners agree there
+ * (ss_noise_seen) and stays within the noise pixels' bound against full mode
+ * (test_noise_pixels); interpolating the texture over those squares breaks it (measured: 89
+ * levels, 130 pixels over 8). */
+static void test_noise_beyond(void **state)
+{
+    (void)state;
+    static rt_scene direct, pane;
+    static uint32_t px_direct[H * W];
+    scene_base(&direct);
+    int mw = add_material(&direct,
+                          (rt_material){.ambient = from_d(0.6),
+                                        .tex = {.kind = RT_TEX_MARBLE,
+                                                .palette = RT_PAL_MARBLE,
+                                                .octaves = 4,
+                                                .scale = from_d(0.9),
+                                                .turbulence = from_d(1.2)}});
+    rt_object *o = &direct.objects[direct.nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mw};
+    o->axis = vd(0, 0, 1);
+    o->offset = from_d(-4);
+    direct.lights[0].pos = vd(2, 4, -1); /* between the pane and the wall: no shadow */
+    direct.camera = (rt_camera){vd(0, 1, 3), vd(0, 1, -4), vd(0, 1, 0), from_d(55)};
+    pane = direct;
+    int mp = add_material(&pane, (rt_material){.transmit = from_d(1), .ior = from_d(1)});
+    o = &pane.objects[pane.nobjects++];
+    *o = (rt_object){.kind = RT_PLANE, .material = (uint8_t)mp};
+    o->axis = vd(0, 0, 1);
+    o->offset = from_d(1);
+    rt_scene_prepare(&direct);
+    rt_scene_prepare(&pane);
+    rt_view v;
+    rt_view_init(&v, &direct.camera, W, H);
+    const rt_params pf = {.depth = 4, .mode = RT_MODE_FULL, .footprint = 1};
+    const rt_params pa = {
+        .depth = 4, .mode = RT_MODE_ADAPTIVE, .grid = 8, .threshold = TS_THRESHOLD, .footprint = 1};
+    rt_stats sd = {0}, sf = {0}, sa = {0};
+    rt_render(&direct, &v, &pf, px_direct, W, &sd, NULL, NULL);
+    rt_render(&pane, &v, &pf, fullpx, W, &sf, NULL, NULL);
+    rt_render(&pane, &v, &pa, adpx, W, &sa, work, NULL);
+    int o_p, o_a;
+    const int w_p = frame_diff(fullpx, px_direct, &o_p), w_a = frame_diff(adpx, fullpx, &o_a);
+    print_message("noise beyond a pane: full mode against no pane: worst %d levels; adaptive "
+                  "against full: worst %d, %d over 8, %lu of %d points traced, %lu splits for "
+                  "secondary rays\n",
+                  w_p, w_a, o_a, (unsigned long)sa.rays_primary, W * H,
+                  (unsigned long)sa.split_by[RT_SPLIT_SECONDARY]);
+    assert_true(w_p <= 2);      /* the pane changes nothing but rounding */
+    for (int y = 0; y < H; y++) /* and every primary ray meets it */
+        for (int x = 0; x < W; x++) {
+            rt_trace_pixel(&pane, &v, &pf, x, y, &sf, &full[y][x]);
+            assert_int_equal(full[y][x].hits[0].object, pane.nobjects - 1);
+        }
+    const int bound_worst = 40, bound_over8 = W * H / 100;
+    assert_true(sa.split_by[RT_SPLIT_SECONDARY] > 0);
+    assert_true(w_a <= bound_worst && o_a <= bound_over8);
+}
+
 /* Shadow pixels: on the shadow of a sphere on a matte floor, lit by a second light as well,
  * adaptive mode fills the 2x2 and 4x4 squares on the shadow's edge from each corner's colour
  * unlit and lit (its own, and the other from the light's term there) with each pixel's own light
@@ -1746,6 +1847,8 @@ int main(void)
         cmocka_unit_test(test_one_tone_checker),
         cmocka_unit_test(test_checker_cells),
         cmocka_unit_test(test_noise_pixels),
+        cmocka_unit_test(test_noise_seen),
+        cmocka_unit_test(test_noise_beyond),
         cmocka_unit_test(test_shadow_pixels),
         cmocka_unit_test(test_local_part),
         cmocka_unit_test(test_local_not_on_noise),

@@ -169,6 +169,11 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             why = RT_SPLIT_OBJECT;
             small = 1;
         }
+        /* a noise texture beyond the primary hit: split for the secondary rays (its points
+         * take their local parts from the corners where they allow, ss_local_ok) */
+        if (why == RT_SPLIT_NONE && w > 2 && c->noise_beyond && ss_noise_maybe(c, k[0]) &&
+            ss_noise_seen(c, k))
+            why = RT_SPLIT_SECONDARY;
         if (why != RT_SPLIT_NONE) {
             if (!small && ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
                 return;
@@ -231,6 +236,27 @@ static void ss_corner_row(ss_ctx *c, rt_sample *row, int ncols, int y)
     }
 }
 
+/* ss_noise_seen's masks (ss_ctx): the objects on a noise texture, and those that cast secondary
+ * rays showing what they meet at its scale, eye at `eye`: a plane, a sphere around the eye, a
+ * sphere that transmits with index 1 (its refracted rays go straight on). noise_beyond stays 0
+ * where there is no such object. */
+static __attribute__((cold, noinline)) void ss_noise_masks(ss_ctx *c, const rt_scene *s, vec3 eye)
+{
+    uint32_t noise = 0, flat = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_object *o = &s->objects[i];
+        const rt_material *m = &s->materials[o->material];
+        if (m->tex.kind > RT_TEX_CHECKER)
+            noise |= (uint32_t)1 << i;
+        if ((m->reflect > 0 || m->transmit > 0) &&
+            (o->kind == RT_PLANE || (m->transmit > 0 && m->ior == R_ONE) ||
+             w_len2(v3_sub_in(o->center, eye)) < o->radius2))
+            flat |= (uint32_t)1 << i;
+    }
+    c->flat_view = flat;
+    c->noise_beyond = flat ? noise : 0;
+}
+
 /* The frame's context for band rows starting at pixel row py0 of `pixels`. */
 static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt_params *p,
                         uint32_t *pixels, int stride, int py0, rt_stats *stats, uint8_t *traced)
@@ -253,6 +279,8 @@ static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt
         c->p_quad.mode = RT_MODE_FULL;
     if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
         c->opaque = rt_probe_masks_of(s);
+    if (rt_scene_has(s, RT_FX_NOISE) && rt_scene_has(s, RT_FX_REFLECT))
+        ss_noise_masks(c, s, v->eye);
 }
 
 unsigned long rt_render_edge_size(const rt_params *p, int width, int nbands)

@@ -43,7 +43,10 @@ typedef struct ss_ctx {
     const rt_params *quad;
     rt_params p_quad;
     rt_probe_masks opaque; /* probe mode: what rt_probe_opaque tests */
-    dir3 ray;              /* ss_hit_at: the last primary ray's direction */
+    /* ss_noise_seen: the objects on a noise texture (none where no object of flat_view casts
+     * secondary rays), and the objects that show what their secondary rays meet at its scale */
+    uint32_t noise_beyond, flat_view;
+    dir3 ray; /* ss_hit_at: the last primary ray's direction */
     real wt[RT_GRID_BUILD_MAX + 1][RT_GRID_BUILD_MAX + 1]; /* wt[n][i] = i / n */
     rt_local loc; /* ss_local's result for the point traced */
 } ss_ctx;
@@ -121,6 +124,25 @@ int ss_centre(ss_ctx *c, rt_sample *sm, const rt_sample *const k[4], int x0, int
  * called only for squares whose corners agree in a frame with small spheres. */
 __attribute__((noinline)) int ss_small_missed(const rt_view *v, const rt_sample *const k[4], int x0,
                                               int y0, int w, int h);
+
+/* subsample_split.c: a square whose corners agree (RT_SPLIT_NONE), corners k[]: 1 when a node
+ * below the primary hit, whose parent is an object of c->flat_view, lies on a noise texture
+ * (c->noise_beyond) with a contribution over twice the threshold at some corner. The texture
+ * varies between any two pixels, so the corners' agreement says nothing of the pixels between
+ * them, and a pixel's contribution there can lie anywhere from 0 to about the corners': about
+ * half of it off the interpolated one. (At the primary hit the noise pixels, ss_noise, take each
+ * pixel's own texture; no record holds the hit beyond.) Only where the parent is flat (a plane,
+ * a sphere around the eye, a lens of index 1): a convex mirror or lens shows the texture smaller
+ * than a pixel, where full mode aliases too. The square is then split, down to 2x2 squares. */
+__attribute__((noinline)) int ss_noise_seen(const ss_ctx *c, const rt_sample *const k[4]);
+
+/* ss_noise_seen's quick test, inline: can corner a's tree hold a node on a noise texture below
+ * its primary hit? Not where its one node there is on another object (most corners on a mirror). */
+static inline int ss_noise_maybe(const ss_ctx *c, const rt_sample *a)
+{
+    const unsigned id = a->hits[1].object;
+    return a->nhits > 2 || (a->nhits == 2 && id < RT_MAX_OBJECTS && (c->noise_beyond >> id & 1));
+}
 
 /* The one place that decides whether a square rt_corners_differ splits (for reason `why`; sm:
  * its (0, 0) in the lattice, k[] its corners, `own` as ss_square's) is filled instead: by the

@@ -1,4 +1,4 @@
-/* subsample_split.c: whether a square's corners disagree (rt_corners_differ) and the centre test of a square split for its contributions (rt_centre_smooth). */
+/* subsample_split.c: whether a square's corners disagree (rt_corners_differ, ss_noise_seen, ss_small_missed) and the centre test of a square split for its contributions (rt_centre_smooth). */
 #include "subsample.h"
 
 /* The contribution bytes of node j of a sample (rt_hit_rec.contrib). */
@@ -139,6 +139,39 @@ int ss_small_missed(const rt_view *v, const rt_sample *const k[4], int x0, int y
             continue;
         if (k[0]->hits[0].object != i && k[1]->hits[0].object != i && k[2]->hits[0].object != i &&
             k[3]->hits[0].object != i)
+            return 1;
+    }
+    return 0;
+}
+
+/* ss_noise_seen for node j of corner 0's tree, on a noise texture: its parent flat and its
+ * contribution over twice the threshold at some corner that has the node. Out of line and cold:
+ * the usual node is on another object. */
+static __attribute__((cold, noinline)) int ss_noise_node(const ss_ctx *c,
+                                                         const rt_sample *const k[4], int j)
+{
+    const rt_sample *a = k[0];
+    const unsigned lv = a->hits[j].level & 15u;
+    int up = j - 1; /* its parent: the last node before it a level up (depth first) */
+    while (up > 0 && (a->hits[up].level & 15u) != lv - 1)
+        up--;
+    if (!(c->flat_view >> a->hits[up].object & 1))
+        return 0;
+    for (int i = 0; i < 4; i++) /* the corners share the node (RT_SPLIT_NONE) or it is faint */
+        for (int ch = 0; ch < 3 && j < k[i]->nhits; ch++)
+            if (k[i]->hits[j].contrib[ch] > 2 * c->thr8)
+                return 1;
+    return 0;
+}
+
+int ss_noise_seen(const ss_ctx *c, const rt_sample *const k[4])
+{
+    const rt_sample *a = k[0];
+    const uint32_t noise = c->noise_beyond;
+    const int n = a->nhits < RT_SAMPLE_MAX_HITS ? a->nhits : RT_SAMPLE_MAX_HITS;
+    for (int j = 1; j < n; j++) {
+        const unsigned id = a->hits[j].object;
+        if (id < RT_MAX_OBJECTS && (noise >> id & 1) && ss_noise_node(c, k, j))
             return 1;
     }
     return 0;
