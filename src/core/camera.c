@@ -48,6 +48,8 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
+    for (int i = 0; i < RT_MAX_OBJECTS; i++)
+        v->cell_side[i] = 255;
 }
 
 /* Once per frame: compiled for size (cold), off the image's hot path. */
@@ -116,14 +118,83 @@ VIEW_ONCE static int view_cone(rt_view *v, uint32_t *cols, uint32_t *rows, vec3 
     return 1;
 }
 
+/* rt_view.cell_side of plane i, whose material has a two-tone checker of `scale` cells per unit.
+ * A cell id holds the cell's coordinates modulo 4: two points with one id lie in one cell when
+ * their coordinates (q = p scale along each axis) differ by less than 3 cells. Along a primary
+ * ray r = fwd + a right + b up (a = (2x + 1 - w) pixel / 2, b = (h - 2y - 1) pixel / 2) the
+ * plane is met at p = eye + h r / g, with h = eye_num (offset - eye . n) and g = n . r, and
+ * dp / dx = pixel h (right g - r (n . right)) / g^2 (dp / dy alike with -up): g and the
+ * numerators are linear in x and y, so over the frame |g| is least, and each numerator largest,
+ * at a corner of it. A square of side w thus spans at most w scale |h| pixel N / gmin^2 cells
+ * along any axis (N: the largest |numerator| along x plus along y, over the axes): the side
+ * returned is the largest power of two, up to 128, that keeps this below 2.5 (a margin for
+ * rounding), 0 where even one pixel does not or the horizon crosses the frame (g takes both
+ * signs), 255 where the frame does not see the plane. Bounds that would not fit a real give 0. */
+VIEW_ONCE static int view_cell_side(const rt_view *v, const rt_scene *s, int i, real scale)
+{
+    const dir3 n = s->objects[i].normal;
+    const real h = s->cull.eye_num[i], nr = u_to_real(d3_dot(n, v->right)),
+               nu = u_to_real(d3_dot(n, v->up)), nf = u_to_real(d3_dot(n, v->fwd));
+    if (h == 0)
+        return 255; /* the eye on the plane: seen edge on */
+    if (v->pixel > R(1.0))
+        return 0;
+    const real rv[3] = {u_to_real(v->fwd.x), u_to_real(v->fwd.y), u_to_real(v->fwd.z)},
+               ri[3] = {u_to_real(v->right.x), u_to_real(v->right.y), u_to_real(v->right.z)},
+               up[3] = {u_to_real(v->up.x), u_to_real(v->up.y), u_to_real(v->up.z)};
+    real gmin = R(1024.0), nx[3] = {0, 0, 0}, ny[3] = {0, 0, 0};
+    int seen = 0;
+    for (int k = 0; k < 4; k++) {
+        const int x = (k & 1) * (v->width - 1), y = (k >> 1) * (v->height - 1);
+        const real a = r_shr(r_muli(v->pixel, 2 * x + 1 - v->width), 1),
+                   b = r_shr(r_muli(v->pixel, v->height - 2 * y - 1), 1);
+        const real g = r_add(nf, r_add(r_mul(a, nr), r_mul(b, nu)));
+        if ((g > 0) == (h > 0) && g != 0)
+            seen |= 1 << k;
+        gmin = r_min(gmin, r_abs(g));
+        for (int ax = 0; ax < 3; ax++) {
+            const real r = r_add(rv[ax], r_add(r_mul(a, ri[ax]), r_mul(b, up[ax])));
+            nx[ax] = r_max(nx[ax], r_abs(r_sub(r_mul(ri[ax], g), r_mul(r, nr))));
+            ny[ax] = r_max(ny[ax], r_abs(r_sub(r_mul(up[ax], g), r_mul(r, nu))));
+        }
+    }
+    if (!seen)
+        return 255;
+    if (seen != 15)
+        return 0; /* the horizon in the frame */
+    real nmax = 0;
+    for (int ax = 0; ax < 3; ax++)
+        nmax = r_max(nmax, r_add(nx[ax], ny[ax]));
+    const real ah = r_abs(h);
+    if (nmax > R(1024.0) || w_mul(scale, ah) > w_mul(R(30000.0), R(1.0)))
+        return 0;
+    /* the cells a side of w spans, w lw, against 2.5 gmin^2 */
+    wide lw = w_mul(r_mul(v->pixel, nmax), r_mul(scale, ah));
+    const wide lim = w_mul(r_mul(R(2.5), gmin), gmin);
+    int side = 0;
+    while (side < 128 && lw < lim) {
+        side = side ? 2 * side : 1;
+        lw = w_add(lw, lw);
+    }
+    return side;
+}
+
 VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
 {
     v->mirror_plane = -1;
     v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
+    for (int i = 0; i < RT_MAX_OBJECTS; i++)
+        v->cell_side[i] = 255;
     if (!rt_scene_at_eye(s, v->eye))
         return; /* rt_nearest_primary does not serve this view */
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_texture *tx = &s->materials[s->objects[i].material].tex;
+        if (RT_CELL_TEST && s->objects[i].kind == RT_PLANE && tx->active &&
+            tx->kind == RT_TEX_CHECKER)
+            v->cell_side[i] = (uint8_t)view_cell_side(v, s, i, tx->scale);
+    }
     for (int i = 0; i < s->nobjects; i++) {
         real cone = s->cull.eye_cone[i];
         if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->cull.eye_cull[i] <= 0)

@@ -148,6 +148,11 @@ typedef struct rt_view {
      * (x0, y0, x1, y1, inclusive); a square overlapping it with no corner on it is split. */
     uint32_t small;
     int16_t box[RT_MAX_OBJECTS][4];
+    /* Checker planes (rt_view_cull): the largest square side, in pixels (a power of two), over
+     * which plane i's cell ids (rt_sample.cell) tell its cells apart everywhere in the frame; 0
+     * where the cells can be finer (up to the horizon): each square is tested. 255 for other
+     * objects. */
+    uint8_t cell_side[RT_MAX_OBJECTS];
 } rt_view;
 
 /* One node of the ray tree as adaptive subsampling compares it. */

@@ -116,6 +116,16 @@ static inline int rt_light_state(const rt_sample *sm, int i) { return sm->lights
 #define RT_COMPILED_PROBE 1
 #endif
 
+/* Does adaptive subsampling test whether a checker plane's cells are finer than its squares
+ * (rt_view.cell_side, ss_cells_apart)? The ARM926 build and the intro players (build/intro-*)
+ * define this to 0: they render the intro, at 320x240 on the board, which keeps the far floor
+ * off the frame and whose pictures the test leaves unchanged there (every frame checked, both
+ * builds); it would cost the board 0.7 M instructions a mean frame and the players their 64 kB
+ * (about 900 B more). The Cortex-M boards keep it: at 128x64 it changes some intro frames. */
+#ifndef RT_CELL_TEST
+#define RT_CELL_TEST 1
+#endif
+
 /* Do the per-object occluder sets leave out a plane that cannot come between a resting
  * sphere's lit points and the light (scene_shadow_pairs)? Pictures are the same either way;
  * the intro player (build/intro-*) defines this to 0 to stay within its 64 kB. */

@@ -169,6 +169,13 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             why = RT_SPLIT_OBJECT;
             small = 1;
         }
+        /* Corners in one checker cell, or whose other differences split them, where the cells
+         * are so fine that one id can mean several cells between them: filled by the cell of
+         * each pixel (ss_cells) or split, as corners in different cells are. */
+        if ((why == RT_SPLIT_NONE || why == RT_SPLIT_CONTRIB || why == RT_SPLIT_LIGHT) &&
+            sm->cell && ss_cells_unsure(c, sm->hits[0].object, w, h) &&
+            ss_cells_apart(c, sm->hits[0].object, x0, y0, w, h))
+            why = RT_SPLIT_OBJECT;
         if (why != RT_SPLIT_NONE) {
             if (!small && ss_fill_instead(c, why, sm, k, x0, y0, w, h, own))
                 return;

@@ -114,6 +114,19 @@ int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_sample *const k[4], int x0
 int ss_shadow(ss_ctx *c, const rt_sample *const k[4], int x0, int y0, int w, int h);
 int ss_centre(ss_ctx *c, rt_sample *sm, const rt_sample *const k[4], int x0, int y0);
 
+/* subsample_shortcut.c: can two points of the square (x0, y0, w, h), whose corners lie on plane
+ * id's two-tone checker, have one cell id (rt_sample.cell) in different cells? 1 when the cells
+ * of its corners' primary hits are 4 or more apart along an axis (the points between lie within
+ * their range), or a corner's ray misses the plane. Only for squares wider than the frame's
+ * rt_view.cell_side of the plane allows (ss_cells_unsure). */
+__attribute__((noinline)) int ss_cells_apart(ss_ctx *c, int id, int x0, int y0, int w, int h);
+
+/* Must the square (x0, y0, w, h), its corners on object id, test its cell ids (ss_cells_apart)? */
+static inline int ss_cells_unsure(const ss_ctx *c, int id, int w, int h)
+{
+    return RT_CELL_TEST && c->view->cell_side[id] < (w > h ? w : h);
+}
+
 /* Does a small sphere (rt_view.small) overlap the square (x0, y0, w, h) with none of its corners
  * k on it, its box no wider than about 1.5 times the square (a wider one always has a corner of
  * the square's lattice on it)? It can lie between the corners, unseen by every criterion: the
