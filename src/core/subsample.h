@@ -124,7 +124,7 @@ __attribute__((noinline)) int ss_cells_apart(ss_ctx *c, int id, int x0, int y0, 
 /* Must the square (x0, y0, w, h), its corners on object id, test its cell ids (ss_cells_apart)? */
 static inline int ss_cells_unsure(const ss_ctx *c, int id, int w, int h)
 {
-    return RT_CELL_TEST && c->view->cell_side[id] < (w > h ? w : h);
+    return RT_FINE_DETAIL && c->view->cell_side[id] < (w > h ? w : h);
 }
 
 /* Does a small sphere (rt_view.small) overlap the square (x0, y0, w, h) with none of its corners
@@ -134,6 +134,12 @@ static inline int ss_cells_unsure(const ss_ctx *c, int id, int w, int h)
  * called only for squares whose corners agree in a frame with small spheres. */
 __attribute__((noinline)) int ss_small_missed(const rt_view *v, const rt_sample *const k[4], int x0,
                                               int y0, int w, int h);
+
+/* Does a pool of light (rt_view.pool) overlap the square (x0, y0, w, h) with a corner k on its
+ * plane? Its peak can lie between the corners: the square is split (as for an object) down to
+ * its pixels. Out of line, called only in a frame with such pools. */
+__attribute__((noinline)) int ss_pool_over(const rt_view *v, const rt_sample *const k[4], int x0,
+                                           int y0, int w, int h);
 
 /* The one place that decides whether a square rt_corners_differ splits (for reason `why`; sm:
  * its (0, 0) in the lattice, k[] its corners, `own` as ss_square's) is filled instead: by the
