@@ -252,7 +252,7 @@ PLAYER_COLD := $(SUBSAMPLE_SRCS) src/core/trace.c src/core/texture.c src/core/no
                platform/headless.c platform/threads.c platform/sdl.c $(GEN)/scene_intro.c
 PLAYER_CFLAGS := $(BASE_CFLAGS) -DCLI_PLAYER=1 -ffunction-sections -fdata-sections -fno-asynchronous-unwind-tables \
                  -fno-unwind-tables -fno-stack-protector -fno-pie -fno-plt -DRT_COMPILED_PROBE=0 -DRT_SHADOW_SETS=0 \
-                 -DRT_PLANE_CULL=0
+                 -DRT_PLANE_CULL=0 -DRT_FINE_DETAIL=0
 PLAYER_LDFLAGS := -no-pie -Wl,--gc-sections -Wl,-z,noseparate-code -Wl,--build-id=none -Wl,--no-eh-frame-hdr
 PLAYER_LIMIT := 65536
 PLAYERS := $(BUILD)/intro-fixed $(BUILD)/intro-float
@@ -292,7 +292,8 @@ ARM_ARCH := -mcpu=arm926ej-s -marm -mfloat-abi=soft
 # The boards play only the scene compiled into them: rt_scene holds that many objects (not 32),
 # which saves RAM (the intro has 7; src/app/intro.c refuses a compiled scene with more).
 BOARD_MAX_OBJECTS := 16
-ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS)
+ARM_CFLAGS := $(ARM_ARCH) -ffreestanding -ffunction-sections -fdata-sections -DRT_MAX_OBJECTS=$(BOARD_MAX_OBJECTS) \
+              -DRT_FINE_DETAIL=0
 # --use-blx: calls between ARM and Thumb code are single BLX instructions (the ARM926 has them)
 # instead of the linker's interworking veneers (8 or 12 B each, two or three instructions more a
 # call): about 300 B less in the fixed image, frames as before.

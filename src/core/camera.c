@@ -48,6 +48,9 @@ void rt_view_init(rt_view *v, const rt_camera *cam, int width, int height)
     v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
+    for (int i = 0; i < RT_MAX_OBJECTS; i++)
+        v->cell_side[i] = 255;
+    v->pool = 0;
 }
 
 /* Once per frame: compiled for size (cold), off the image's hot path. */
@@ -116,14 +119,149 @@ VIEW_ONCE static int view_cone(rt_view *v, uint32_t *cols, uint32_t *rows, vec3 
     return 1;
 }
 
+/* rt_view.cell_side of plane i, whose material has a two-tone checker of `scale` cells per unit.
+ * A cell id holds the cell's coordinates modulo 4: two points with one id lie in one cell when
+ * their coordinates (q = p scale along each axis) differ by less than 3 cells. Along a primary
+ * ray r = fwd + a right + b up (a = (2x + 1 - w) pixel / 2, b = (h - 2y - 1) pixel / 2) the
+ * plane is met at p = eye + h r / g, with h = eye_num (offset - eye . n) and g = n . r, and
+ * dp / dx = pixel h (right g - r (n . right)) / g^2 (dp / dy alike with -up): g and the
+ * numerators are linear in x and y, so over the frame |g| is least, and each numerator largest,
+ * at a corner of it. A square of side w thus spans at most w scale |h| pixel N / gmin^2 cells
+ * along any axis (N: the largest |numerator| along x plus along y, over the axes): the side
+ * returned is the largest power of two, up to 128, that keeps this below 2.5 (a margin for
+ * rounding), 0 where even one pixel does not or the horizon crosses the frame (g takes both
+ * signs), 255 where the frame does not see the plane. Bounds that would not fit a real give 0. */
+VIEW_ONCE static int view_cell_side(const rt_view *v, const rt_scene *s, int i, real scale)
+{
+    const dir3 n = s->objects[i].normal;
+    const real h = s->cull.eye_num[i], nr = u_to_real(d3_dot(n, v->right)),
+               nu = u_to_real(d3_dot(n, v->up)), nf = u_to_real(d3_dot(n, v->fwd));
+    if (h == 0)
+        return 255; /* the eye on the plane: seen edge on */
+    if (v->pixel > R(1.0))
+        return 0;
+    const real rv[3] = {u_to_real(v->fwd.x), u_to_real(v->fwd.y), u_to_real(v->fwd.z)},
+               ri[3] = {u_to_real(v->right.x), u_to_real(v->right.y), u_to_real(v->right.z)},
+               up[3] = {u_to_real(v->up.x), u_to_real(v->up.y), u_to_real(v->up.z)};
+    real gmin = R(1024.0), nx[3] = {0, 0, 0}, ny[3] = {0, 0, 0};
+    int seen = 0;
+    for (int k = 0; k < 4; k++) {
+        const int x = (k & 1) * (v->width - 1), y = (k >> 1) * (v->height - 1);
+        const real a = r_shr(r_muli(v->pixel, 2 * x + 1 - v->width), 1),
+                   b = r_shr(r_muli(v->pixel, v->height - 2 * y - 1), 1);
+        const real g = r_add(nf, r_add(r_mul(a, nr), r_mul(b, nu)));
+        if ((g > 0) == (h > 0) && g != 0)
+            seen |= 1 << k;
+        gmin = r_min(gmin, r_abs(g));
+        for (int ax = 0; ax < 3; ax++) {
+            const real r = r_add(rv[ax], r_add(r_mul(a, ri[ax]), r_mul(b, up[ax])));
+            nx[ax] = r_max(nx[ax], r_abs(r_sub(r_mul(ri[ax], g), r_mul(r, nr))));
+            ny[ax] = r_max(ny[ax], r_abs(r_sub(r_mul(up[ax], g), r_mul(r, nu))));
+        }
+    }
+    if (!seen)
+        return 255;
+    if (seen != 15)
+        return 0; /* the horizon in the frame */
+    real nmax = 0;
+    for (int ax = 0; ax < 3; ax++)
+        nmax = r_max(nmax, r_add(nx[ax], ny[ax]));
+    const real ah = r_abs(h);
+    if (nmax > R(1024.0) || w_mul(scale, ah) > w_mul(R(30000.0), R(1.0)))
+        return 0;
+    /* the cells a side of w spans, w lw, against 2.5 gmin^2 */
+    wide lw = w_mul(r_mul(v->pixel, nmax), r_mul(scale, ah));
+    const wide lim = w_mul(r_mul(R(2.5), gmin), gmin);
+    int side = 0;
+    while (side < 128 && lw < lim) {
+        side = side ? 2 * side : 1;
+        lw = w_add(lw, lw);
+    }
+    return side;
+}
+
+/* The pixel coordinates (Q16.16, as reals) of point p in *px and *py: 1, or 0 for a point not
+ * well in front of the eye. Within 4096 pixels of the frame's centre (clamped). */
+VIEW_ONCE static int view_project(const rt_view *v, vec3 p, real *px, real *py)
+{
+    const vec3 d = v3_sub(p, v->eye);
+    const real z = v3_dot_d(d, v->fwd), lim = r_muli(v->pixel, 4096);
+    if (z < R(0.0009765625))
+        return 0;
+    /* 2x + 1 - w = 2 a / pixel, with a = (d . right) / z; y alike with up, downwards */
+    real a = r_clamp(r_div(v3_dot_d(d, v->right), z), r_neg(lim), lim),
+         b = r_clamp(r_div(v3_dot_d(d, v->up), z), r_neg(lim), lim);
+    *px = r_add(r_div(a, v->pixel), r_from_ratio(v->width - 1, 2));
+    *py = r_sub(r_from_ratio(v->height - 1, 2), r_div(b, v->pixel));
+    return 1;
+}
+
+/* Light i over plane j (rt_view.pool): a light at height hl over a plane lights it, under it,
+ * with n . l = hl / sqrt(hl^2 + rho^2) at distance rho from its foot, a peak that falls to a
+ * quarter at rho = 4 hl: the disc of that radius, its image bounded by the images of the four
+ * ends of two diameters (padded by 2 pixels). Seen at a grazing angle it is thinner than a
+ * square, and corners on either side of it miss its peak: kept where the box is less than 16
+ * pixels high or wide and the light and the eye are on the same side of the plane. */
+VIEW_ONCE static void view_pool(rt_view *v, const rt_scene *s, int i, int j)
+{
+    const rt_object *o = &s->objects[j];
+    const vec3 l = s->lights[i].pos;
+    const real hl = r_sub(v3_dot_d(l, o->normal), o->offset);
+    if (v->pool >> i & 1 || hl == 0 || (hl > 0) != (s->cull.eye_num[j] < 0) ||
+        r_abs(hl) > R(1024.0))
+        return;
+    const dir3 n = o->normal;
+    const dir3 ax = n.x > U(0.5) || n.x < U(-0.5) ? (dir3){0, U_ONE, 0} : (dir3){U_ONE, 0, 0};
+    const dir3 u = d3_cross(n, ax, 0), w = d3_cross(n, u, 0);
+    const vec3 foot = v3_along(l, n, r_neg(hl));
+    const real r = r_muli(r_abs(hl), 4);
+    real x0 = R(32767.0), y0 = R(32767.0), x1 = r_neg(x0), y1 = r_neg(y0);
+    for (int k = 0; k < 4; k++) {
+        real px, py;
+        if (!view_project(v, v3_along(foot, k < 2 ? u : w, k & 1 ? r : r_neg(r)), &px, &py))
+            return;
+        x0 = r_min(x0, px);
+        x1 = r_max(x1, px);
+        y0 = r_min(y0, py);
+        y1 = r_max(y1, py);
+    }
+    int32_t b[4];
+    r_floor_split(r_sub(x0, R(2.0)), &b[0]);
+    r_floor_split(r_sub(y0, R(2.0)), &b[1]);
+    r_floor_split(r_add(x1, R(3.0)), &b[2]);
+    r_floor_split(r_add(y1, R(3.0)), &b[3]);
+    if ((b[2] - b[0] >= 16 && b[3] - b[1] >= 16) || b[2] < 0 || b[3] < 0 || b[0] >= v->width ||
+        b[1] >= v->height)
+        return;
+    v->pool |= 1u << i;
+    v->pool_plane[i] = (uint8_t)j;
+    v->pool_box[i][0] = (int16_t)(b[0] < 0 ? 0 : b[0]);
+    v->pool_box[i][1] = (int16_t)(b[1] < 0 ? 0 : b[1]);
+    v->pool_box[i][2] = (int16_t)(b[2] >= v->width ? v->width - 1 : b[2]);
+    v->pool_box[i][3] = (int16_t)(b[3] >= v->height ? v->height - 1 : b[3]);
+}
+
 VIEW_ONCE void rt_view_cull(rt_view *v, const rt_scene *s)
 {
     v->mirror_plane = -1;
     v->small = 0;
     for (int i = 0; i < RT_VIEW_TILES; i++)
         v->cull_cols[i] = v->cull_rows[i] = v->mirror_cols[i] = v->mirror_rows[i] = 0xFFFFFFFFu;
+    for (int i = 0; i < RT_MAX_OBJECTS; i++)
+        v->cell_side[i] = 255;
+    v->pool = 0;
     if (!rt_scene_at_eye(s, v->eye))
         return; /* rt_nearest_primary does not serve this view */
+    for (int i = 0; i < s->nlights && RT_FINE_DETAIL; i++)
+        for (int j = 0; j < s->nobjects; j++)
+            if (s->objects[j].kind == RT_PLANE)
+                view_pool(v, s, i, j);
+    for (int i = 0; i < s->nobjects; i++) {
+        const rt_texture *tx = &s->materials[s->objects[i].material].tex;
+        if (RT_FINE_DETAIL && s->objects[i].kind == RT_PLANE && tx->active &&
+            tx->kind == RT_TEX_CHECKER)
+            v->cell_side[i] = (uint8_t)view_cell_side(v, s, i, tx->scale);
+    }
     for (int i = 0; i < s->nobjects; i++) {
         real cone = s->cull.eye_cone[i];
         if (s->objects[i].kind != RT_SPHERE || cone <= 0 || s->cull.eye_cull[i] <= 0)

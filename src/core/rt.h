@@ -148,6 +148,18 @@ typedef struct rt_view {
      * (x0, y0, x1, y1, inclusive); a square overlapping it with no corner on it is split. */
     uint32_t small;
     int16_t box[RT_MAX_OBJECTS][4];
+    /* Checker planes (rt_view_cull): the largest square side, in pixels (a power of two), over
+     * which plane i's cell ids (rt_sample.cell) tell its cells apart everywhere in the frame; 0
+     * where the cells can be finer (up to the horizon): each square is tested. 255 for other
+     * objects. */
+    uint8_t cell_side[RT_MAX_OBJECTS];
+    /* Pools of light (rt_view_cull): bit i when light i lies so close to plane pool_plane[i]
+     * that the peak of its light there, under it, is thinner than a square in the frame:
+     * pool_box[i] (x0, y0, x1, y1, inclusive) bounds it; a square overlapping it with a corner on
+     * the plane is split down to its pixels. */
+    uint32_t pool;
+    uint8_t pool_plane[RT_MAX_LIGHTS];
+    int16_t pool_box[RT_MAX_LIGHTS][4];
 } rt_view;
 
 /* One node of the ray tree as adaptive subsampling compares it. */

@@ -116,6 +116,19 @@ static inline int rt_light_state(const rt_sample *sm, int i) { return sm->lights
 #define RT_COMPILED_PROBE 1
 #endif
 
+/* Does adaptive subsampling look for detail finer than its squares that the frame's geometry
+ * shows before a ray is traced: checker cells finer than a square (rt_view.cell_side,
+ * ss_cells_apart) and pools of light (rt_view.pool, ss_pool_over)? The ARM926 build and the
+ * intro players (build/intro-*) define this to 0: they render the intro, at 320x240 on the
+ * board, which keeps the far floor off the frame and its lights well above it, and whose
+ * pictures these tests leave unchanged there (every frame checked, both builds and modes);
+ * they would cost the board 0.7 M instructions a mean frame and 1.5 kB of its image, and the
+ * players their 64 kB. The Cortex-M boards keep them: at 128x64 the cell test changes some
+ * intro frames. */
+#ifndef RT_FINE_DETAIL
+#define RT_FINE_DETAIL 1
+#endif
+
 /* Do the per-object occluder sets leave out a plane that cannot come between a resting
  * sphere's lit points and the light (scene_shadow_pairs)? Pictures are the same either way;
  * the intro player (build/intro-*) defines this to 0 to stay within its 64 kB. */

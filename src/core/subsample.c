@@ -164,11 +164,24 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         st->squares[li]++;
         const rt_sample *k[4] = {sm, sm + w, k2, k2 + w};
         enum rt_split_reason why = rt_corners_differ(k, c->thr8);
-        int small = 0; /* a small sphere between the corners: split, no shortcut fills it */
+        /* a small sphere (1) or a pool of light (2) between the corners: split, no shortcut
+         * fills it */
+        int small = 0;
         if (why == RT_SPLIT_NONE && c->view->small && ss_small_missed(c->view, k, x0, y0, w, h)) {
             why = RT_SPLIT_OBJECT;
             small = 1;
         }
+        if (RT_FINE_DETAIL && c->view->pool && ss_pool_over(c->view, k, x0, y0, w, h)) {
+            why = RT_SPLIT_OBJECT;
+            small = 2; /* and no probe: a probe sees no light */
+        }
+        /* Corners in one checker cell, or whose other differences split them, where the cells
+         * are so fine that one id can mean several cells between them: filled by the cell of
+         * each pixel (ss_cells) or split, as corners in different cells are. */
+        if ((why == RT_SPLIT_NONE || why == RT_SPLIT_CONTRIB || why == RT_SPLIT_LIGHT) &&
+            sm->cell && ss_cells_unsure(c, sm->hits[0].object, w, h) &&
+            ss_cells_apart(c, sm->hits[0].object, x0, y0, w, h))
+            why = RT_SPLIT_OBJECT;
         /* a noise texture beyond the primary hit: split for the secondary rays (its points
          * take their local parts from the corners where they allow, ss_local_ok) */
         if (why == RT_SPLIT_NONE && w > 2 && c->noise_beyond && ss_noise_maybe(c, k[0]) &&
@@ -181,7 +194,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
             st->split_by[why]++;
             c->split = 1;
             int nx = w >= 2 ? 2 : 1, ny = h >= 2 ? 2 : 1;
-            if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
+            if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE && small != 2)
                 ss_probe_split(c, x0, y0, w, h, nx, ny, k);
             /* the points it adds: their local parts interpolated where its corners allow */
             const ss_area here = {k, x0, y0, w, h};

@@ -117,6 +117,19 @@ int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_sample *const k[4], int x0
 int ss_shadow(ss_ctx *c, const rt_sample *const k[4], int x0, int y0, int w, int h);
 int ss_centre(ss_ctx *c, rt_sample *sm, const rt_sample *const k[4], int x0, int y0);
 
+/* subsample_shortcut.c: can two points of the square (x0, y0, w, h), whose corners lie on plane
+ * id's two-tone checker, have one cell id (rt_sample.cell) in different cells? 1 when the cells
+ * of its corners' primary hits are 4 or more apart along an axis (the points between lie within
+ * their range), or a corner's ray misses the plane. Only for squares wider than the frame's
+ * rt_view.cell_side of the plane allows (ss_cells_unsure). */
+__attribute__((noinline)) int ss_cells_apart(ss_ctx *c, int id, int x0, int y0, int w, int h);
+
+/* Must the square (x0, y0, w, h), its corners on object id, test its cell ids (ss_cells_apart)? */
+static inline int ss_cells_unsure(const ss_ctx *c, int id, int w, int h)
+{
+    return RT_FINE_DETAIL && c->view->cell_side[id] < (w > h ? w : h);
+}
+
 /* Does a small sphere (rt_view.small) overlap the square (x0, y0, w, h) with none of its corners
  * k on it, its box no wider than about 1.5 times the square (a wider one always has a corner of
  * the square's lattice on it)? It can lie between the corners, unseen by every criterion: the
@@ -143,6 +156,12 @@ static inline int ss_noise_maybe(const ss_ctx *c, const rt_sample *a)
     const unsigned id = a->hits[1].object;
     return a->nhits > 2 || (a->nhits == 2 && id < RT_MAX_OBJECTS && (c->noise_beyond >> id & 1));
 }
+
+/* Does a pool of light (rt_view.pool) overlap the square (x0, y0, w, h) with a corner k on its
+ * plane? Its peak can lie between the corners: the square is split (as for an object) down to
+ * its pixels. Out of line, called only in a frame with such pools. */
+__attribute__((noinline)) int ss_pool_over(const rt_view *v, const rt_sample *const k[4], int x0,
+                                           int y0, int w, int h);
 
 /* The one place that decides whether a square rt_corners_differ splits (for reason `why`; sm:
  * its (0, 0) in the lattice, k[] its corners, `own` as ss_square's) is filled instead: by the

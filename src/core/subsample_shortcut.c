@@ -37,6 +37,26 @@ static __attribute__((cold, noinline)) uint8_t ss_cell_at(ss_ctx *c, const rt_ma
     return cell;
 }
 
+int ss_cells_apart(ss_ctx *c, int id, int x0, int y0, int w, int h)
+{
+    const real scale = c->scene->materials[c->scene->objects[id].material].tex.scale;
+    int32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int n = 0; n < 4; n++) {
+        vec3 at;
+        real t;
+        if (!ss_hit_at(c, id, x0 + (n & 1) * w, y0 + (n >> 1) * h, &at, &t))
+            return 1;
+        /* the cell's coordinates as rt_texture_color forms them */
+        const int32_t q[3] = {r_mul_round_in(at.x, scale), r_mul_round_in(at.y, scale),
+                              r_mul_round_in(at.z, scale)};
+        for (int ax = 0; ax < 3; ax++) {
+            lo[ax] = n && lo[ax] < q[ax] ? lo[ax] : q[ax];
+            hi[ax] = n && hi[ax] > q[ax] ? hi[ax] : q[ax];
+        }
+    }
+    return hi[0] - lo[0] > 3 || hi[1] - lo[1] > 3 || hi[2] - lo[2] > 3;
+}
+
 /* A square that rt_corners_differ would split for its primary object (RT_SPLIT_OBJECT), k[] its
  * corners (sm: its (0, 0) in the lattice): when the corners lie on one plane whose material is a
  * two-tone checker and differ only in their cells, the square is not split as long as the
@@ -95,12 +115,19 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
      * are multiples of 4, then at the multiples of 2 and of 1 in turn only where the points a
      * step away on either side (left and right, above and below, or the four diagonal ones)
      * are not all in one cell. A cell is a convex square on the plane, and so is its image: a
-     * point between two of its points lies in it. (Cell ids repeat every four cells along each
-     * axis: cells so small that points four pixels apart are four cells apart have tones no
-     * picture resolves.) Points traced before keep their colour and give their cell. */
+     * point between two of its points lies in it. Cell ids repeat every four cells along each
+     * axis: where the cells are so fine that two points with one id can lie in different cells
+     * (ss_cells_apart), a cell is taken from its neighbours only at the steps the frame's
+     * rt_view.cell_side allows, else looked up. Points traced before keep their colour and give
+     * their cell. */
     const rt_material *m = &s->materials[s->objects[id].material];
     const int cs = RT_GRID_BUILD_MAX + 1;
     uint8_t cid[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
+    /* Where the cells are so fine that points 2 d apart can be in different cells of one id,
+     * no cell is taken from the points a step d away: the largest such step (0: none) */
+    int sure = 4;
+    if (ss_cells_unsure(c, id, w, h) && ss_cells_apart(c, id, x0, y0, w, h))
+        sure = c->view->cell_side[id] >> 1;
     for (int d = 4; d >= 1; d >>= 1)
         for (int j = 0; j <= h && (d > 1 || j < rows); j += d) {
             /* the row's points not done at a coarser step: every d-th, or (a row done at
@@ -123,7 +150,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
                 }
                 int cell = 0;
                 const int di = i & d; /* d or 0: the neighbours' offsets */
-                if (d < 4 && i + di <= w && j + dj <= h) {
+                if (d < 4 && d <= sure && i + di <= w && j + dj <= h) {
                     int a = q[-di - dj * cs], b = q[di + dj * cs];
                     if (di && dj && (q[di - dj * cs] != a || q[dj * cs - di] != a))
                         a = 0; /* the other diagonal */

@@ -176,3 +176,17 @@ int ss_noise_seen(const ss_ctx *c, const rt_sample *const k[4])
     }
     return 0;
 }
+
+int ss_pool_over(const rt_view *v, const rt_sample *const k[4], int x0, int y0, int w, int h)
+{
+    for (uint32_t m = v->pool; m; m &= m - 1) {
+        const unsigned i = (unsigned)__builtin_ctz(m), j = v->pool_plane[i];
+        const int16_t *b = v->pool_box[i];
+        if (b[2] < x0 || b[0] > x0 + w || b[3] < y0 || b[1] > y0 + h)
+            continue;
+        if (k[0]->hits[0].object == j || k[1]->hits[0].object == j || k[2]->hits[0].object == j ||
+            k[3]->hits[0].object == j)
+            return 1;
+    }
+    return 0;
+}
