@@ -371,14 +371,15 @@ $(PROFILE_PLUGIN): platform/arm/qemu_profile.c
 M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 # The Cortex-M boards' sizes, to fit their RAM: frames of 128x64; the scene structure for the
 # intro's 7 objects, 2 lights and 7 materials (intro.c refuses a compiled scene with more); the
-# view's 32 tiles a side (a 128-pixel row in tiles of 4). The M3 renders grids 4 and 8 in bands of
-# up to 8 rows (a row of grid-8 squares, platform/band.c); the M0 (16 KiB) grid 4 alone, its
-# default, in bands of 4 rows: the per-square arrays for grids up to RT_GRID_BUILD_MAX. The M0's
-# stack holds the ray tree to the intro's depth, 5 (--depth 6 would fill it; INTRO_MAX_DEPTH).
+# view's candidate tiles, 32 a side on the M3 (a 128-pixel row in tiles of 4), 16 on the M0 (tiles
+# of 8: half the view's 512 bytes of sets, the same pictures). The M3 renders grids 4 and 8 in
+# bands of up to 8 rows (a row of grid-8 squares, platform/band.c); the M0 (16 KiB) grid 4 alone,
+# its default, in bands of 4 rows: the per-square arrays for grids up to RT_GRID_BUILD_MAX. The
+# M0's stack holds the ray tree to render's deepest, --depth 8 (tests/m0.sh measures it).
 CM_BOARD_DEFS := -DINTRO_W=128 -DINTRO_H=64 -DBOARD_W=128 -DBOARD_H=64 \
-                 -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8 -DRT_VIEW_TILES=32
-M3_BOARD_DEFS := -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8
-M0_BOARD_DEFS := -DBOARD_BAND_ROWS=4 -DRT_GRID_BUILD_MAX=4 -DINTRO_DEFAULT_GRID=4 -DINTRO_MAX_DEPTH=5
+                 -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8
+M3_BOARD_DEFS := -DRT_VIEW_TILES=32 -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8
+M0_BOARD_DEFS := -DRT_VIEW_TILES=16 -DBOARD_BAND_ROWS=4 -DRT_GRID_BUILD_MAX=4 -DINTRO_DEFAULT_GRID=4
 M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_BOARD_DEFS) $(M3_BOARD_DEFS)
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments

@@ -116,7 +116,7 @@ for S in "--octaves 1 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode ful
     fail "m0: frame $n with $S: $(tail -2 "$T/set.log" | tr '\n' ' ')"
   fi
 done
-for S in "--grid 8" "--grid 16" "--grid 2" "--depth 6"; do
+for S in "--grid 8" "--grid 16" "--grid 2"; do
   # shellcheck disable=SC2086
   out=$(platform/m0/qemu.sh bench $S 0 0 1 2>&1)
   st=$?
@@ -137,6 +137,19 @@ if platform/m0/qemu.sh bench 0 1200 25 >"$T/bench.log" 2>&1; then
   fi
 else
   fail "m0: bench 0 1200 25: $(tail -2 "$T/bench.log" | tr '\n' ' ')"
+fi
+
+# The deepest ray tree render allows, --depth 8, within the RAM too (the stack's peak grows with
+# the depth: each level of trace_ray holds about 220 bytes).
+if platform/m0/qemu.sh bench --depth 8 0 1200 100 >"$T/deep.log" 2>&1; then
+  ram=$(sed -n 's/^ram: .* total=\([0-9]*\) bytes$/\1/p' "$T/deep.log")
+  if [ -n "$ram" ] && [ "$ram" -le "$RAM_LIMIT" ]; then
+    pass "m0: RAM at --depth 8 over 13 intro frames: $(grep '^ram:' "$T/deep.log" | sed 's/^ram: //') <= $RAM_LIMIT"
+  else
+    fail "m0: RAM at --depth 8: $(grep '^ram:' "$T/deep.log") (limit $RAM_LIMIT)"
+  fi
+else
+  fail "m0: bench --depth 8 0 1200 100: $(tail -2 "$T/deep.log" | tr '\n' ' ')"
 fi
 
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.

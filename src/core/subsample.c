@@ -116,10 +116,10 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
     const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
         if (!at[j * h * c->lstride + w / 2].nhits && ss_probe_edge(k[2 * j], k[2 * j + 1]))
-            ss_probe_new(c, x0 + w / 2, y0 + j * h, k[2 * j], k[2 * j + 1], c->wt[w][w / 2], w);
+            ss_probe_new(c, x0 + w / 2, y0 + j * h, k[2 * j], k[2 * j + 1], c->half[w], w);
     for (int i = 0; i < 2 && ny == 2; i++) /* left, right: k[0], k[2] and k[1], k[3] */
         if (!at[h / 2 * c->lstride + i * w].nhits && ss_probe_edge(k[i], k[i + 2]))
-            ss_probe_new(c, x0 + i * w, y0 + h / 2, k[i], k[i + 2], c->wt[h][h / 2], h);
+            ss_probe_new(c, x0 + i * w, y0 + h / 2, k[i], k[i + 2], c->half[h], h);
 }
 
 /* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
@@ -247,8 +247,7 @@ static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt
                   .lstride = p->grid + 1,
                   .p_quad = *p};
     for (int n = 1; n <= p->grid; n++)
-        for (int i = 0; i <= n; i++)
-            c->wt[n][i] = r_from_ratio(i, n);
+        c->half[n] = r_from_ratio(n / 2, n);
     if (p->mode != RT_MODE_FULL)
         c->p_quad.mode = RT_MODE_FULL;
     if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)

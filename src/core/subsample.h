@@ -42,10 +42,10 @@ typedef struct ss_ctx {
      * at even ones (sizes are powers of two); else as the others (params). */
     const rt_params *quad;
     rt_params p_quad;
-    rt_probe_masks opaque; /* probe mode: what rt_probe_opaque tests */
-    dir3 ray;              /* ss_hit_at: the last primary ray's direction */
-    real wt[RT_GRID_BUILD_MAX + 1][RT_GRID_BUILD_MAX + 1]; /* wt[n][i] = i / n */
-    rt_local loc; /* ss_local's result for the point traced */
+    rt_probe_masks opaque;            /* probe mode: what rt_probe_opaque tests */
+    dir3 ray;                         /* ss_hit_at: the last primary ray's direction */
+    real half[RT_GRID_BUILD_MAX + 1]; /* half[n] = (n / 2) / n: a probed edge's middle */
+    rt_local loc;                     /* ss_local's result for the point traced */
 } ss_ctx;
 
 /* A square split for its secondary rays whose points' local parts are interpolated (ss_local_ok):
