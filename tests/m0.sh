@@ -153,6 +153,6 @@ else
 fi
 
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.
-board_fault m0 "$T" "-mcpu=cortex-m0 -mthumb -mfloat-abi=soft" platform/m0/link.ld "$B/obj/m0-fixed" "platform/m0/m0.o platform/band.o" \
+board_fault m0 "$T" "-mcpu=cortex-m0 -mthumb -mfloat-abi=soft" platform/m0/link.ld "$B/obj/m0-fixed" "platform/m0/m0.o platform/band.o platform/cortexm.o" \
   '^error: CPU exception: HardFault (pc=0x' -M microbit
 lib_status
