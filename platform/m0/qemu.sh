@@ -18,37 +18,31 @@
 # With QEMU_PLUGIN=FILE.so,ARGS QEMU loads that TCG plugin (make qemu-profile REAL=m0).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. platform/qemu-settings.sh
 
-die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
 usage="usage: platform/m0/qemu.sh frames|bench [SETTINGS] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
 cmd=$1
 shift
 elf=build/m0/intro-fixed.elf
-[ -f "$elf" ] || die "$elf is missing: run make m0 first"
-command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
-timeout_s=${QEMU_TIMEOUT:-600}
-case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+qemu_checks "$elf" m0
 
 # The render settings go to the board first (it checks their values); the rest stay in order.
-. platform/qemu-settings.sh
 qemu_settings "$@"
 set -- "${args[@]+"${args[@]}"}"
-semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 
 case "$cmd" in
   frames)
-    [ $# -ge 1 ] || die "frames wants at least one frame number"
+    qemu_frame_args "$@"
     mkdir -p build/qemu-m0
     for n in "$@"; do
-      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
       rm -f "build/qemu-m0/fixed-$(printf '%04d' "$((10#$n))").ppm"
     done
     set -- --out build/qemu-m0/fixed "$@"
     ;;
   bench)
-    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    qemu_bench_args "$@"
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
 esac
