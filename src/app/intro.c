@@ -37,12 +37,12 @@
 #define INTRO_H 240
 #endif
 
-/* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): two rows of
+/* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): a row of
  * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
  * default), or 4 alone where the build renders no grid above (RT_GRID_BUILD_MAX: the Cortex-M0,
  * whose 16 KiB of RAM take grid 4's storage and band, not grid 8's; its default is then 4,
  * INTRO_DEFAULT_GRID). Grids 2 and 16 need about 10 KB more, beyond the boards' RAM budgets. */
-#define INTRO_WORK(g) (2 * ((INTRO_W - 1 + (g)-1) / (g) + 1) + ((g) + 1) * ((g) + 1))
+#define INTRO_WORK(g) ((INTRO_W - 1 + (g)-1) / (g) + 1 + ((g) + 1) * ((g) + 1))
 #if RT_GRID_BUILD_MAX >= 8
 #define INTRO_WORK_SAMPLES (INTRO_WORK(4) > INTRO_WORK(8) ? INTRO_WORK(4) : INTRO_WORK(8))
 #else

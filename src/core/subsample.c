@@ -24,7 +24,7 @@ FX_BOARD_THUMB unsigned long rt_render_work_size(const rt_params *p, int width)
         return 0;
     unsigned long row = (unsigned long)ss_count(width, p->grid) + 1;
     unsigned long side = (unsigned long)p->grid + 1;
-    return (2 * row + side * side) * sizeof(rt_sample);
+    return (row + side * side) * sizeof(rt_sample);
 }
 
 FX_BOARD_THUMB int rt_render_band_count(const rt_params *p, int height)
@@ -291,28 +291,24 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     const rt_sample *band_edge = edges ? (const rt_sample *)edges + (long)band * (ncols + 1) : NULL;
     const size_t row_bytes = (size_t)(ncols + 1) * sizeof(rt_sample);
 
-    /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
-     * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
-    rt_sample *top = work, *bot = top + ncols + 1;
-    rt_sample *const lat = bot + ncols + 1;
+    /* One row of corners: the top corners of the row of squares being rendered, each replaced by
+     * the bottom one below it as the squares reach it. A square traces its bottom right corner
+     * (the first square its bottom left one too); its other corners the lattice keeps from the
+     * square before. The corners are shaded in full, so the order does not change them. After a
+     * band, the row holds its bottom corners, where the band below finds them (RT_BAND_KEEP). */
+    rt_sample *const corners = work;
+    rt_sample *const lat = corners + ncols + 1;
     const int ls = c.lstride;
     c.lat = lat;
-    if (r0 % 2) {
-        top = bot;
-        bot = work;
-    }
     if (band_edge)
-        memcpy(top, band_edge, row_bytes);
+        memcpy(corners, band_edge, row_bytes);
     else if (mem != RT_BAND_KEEP)
-        ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
+        ss_corner_row(&c, corners, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
-        if (h == 0)
-            memcpy(bot, top, row_bytes); /* a one-pixel-high frame */
-        else if (band_edge && r == r1 - 1)
-            memcpy(bot, band_edge + ncols + 1, row_bytes);
-        else
-            ss_corner_row(&c, bot, ncols, y0 + h);
+        /* the bottom corners given (rt_render_edge); none in a one-pixel-high frame (h 0: they
+         * are the top ones, the lattice's row h its row 0) */
+        const rt_sample *given = band_edge && r == r1 - 1 && h > 0 ? band_edge + ncols + 1 : NULL;
         c.sy = y0;
         int prev_w = -1;
         /* The lattice holds no traced point but its corners (the square before was not split
@@ -329,7 +325,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             } else {
                 for (int ly = 0; ly <= h; ly++, row += ls) {
                     /* The left edge is the square before's right edge: keep what it traced
-                     * (its corners too: they are top[i] and bot[i], copied there before). */
+                     * (its corners too). */
                     if (prev_w >= 0 && row[prev_w].nhits) {
                         row[0] = row[prev_w];
                         edge |= ly != 0 && ly != h;
@@ -345,12 +341,24 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         q->nhits = 0;
                 }
             }
-            if (prev_w < 0) {
-                lat[0] = top[i];
-                hrow[0] = bot[i];
+            /* Its top corners into the lattice; then its bottom right one (the first square's
+             * bottom left one too) into the row of corners, in place of the top one the lattice
+             * now keeps, and into the lattice. (In a one-pixel-wide frame, w 0, the one corner
+             * is corners[1]: corners[0] is left behind, and lat[w] is lat[0].) */
+            if (prev_w < 0)
+                lat[0] = corners[0];
+            lat[w] = corners[i + 1];
+            for (int k = prev_w < 0 ? 0 : w;; k = w) {
+                rt_sample *b = &corners[i + (k == w)];
+                if (given)
+                    *b = given[i + (k == w)];
+                else if (h > 0)
+                    ss_shade(&c, c.params, NULL, x0 + k, y0 + h, b);
+                if (h > 0)
+                    hrow[k] = *b;
+                if (k == w)
+                    break;
             }
-            lat[w] = top[i + 1];
-            hrow[w] = bot[i + 1];
             c.split = 0;
             c.quad = w == g && h == g ? &c.p_quad : p;
             ss_square(&c, lat, x0, y0, w, h, 0,
@@ -358,9 +366,6 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             clean = !c.split && !edge;
             prev_w = w;
         }
-        rt_sample *t = top;
-        top = bot;
-        bot = t;
     }
 }
 
