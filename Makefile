@@ -372,18 +372,19 @@ M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 # The Cortex-M boards' sizes, to fit their RAM: frames of 128x64; the scene structure for the
 # intro's 7 objects, 2 lights and 7 materials (intro.c refuses a compiled scene with more); the
 # view's candidate tiles, 32 a side on the M3 (a 128-pixel row in tiles of 4), 16 on the M0 (tiles
-# of 8: half the view's 512 bytes of sets, the same pictures). The M3 renders grids 4 and 8 in
-# bands of up to 8 rows (a row of grid-8 squares, platform/band.c); the M0 (16 KiB) grid 4 alone,
-# its default, in bands of 4 rows: the per-square arrays for grids up to RT_GRID_BUILD_MAX. The
-# M0's stack holds the ray tree to render's deepest, --depth 8 (tests/m0.sh measures it).
+# of 8: half the view's 512 bytes of sets, the same pictures). Both render grids 4 and 8 (8 the
+# default) in bands of up to 8 rows (a row of grid-8 squares, platform/band.c), the per-square
+# arrays for grids up to RT_GRID_BUILD_MAX. The M0 (16 KiB) writes its band in 3-byte pixels
+# (RT_PIXEL_RGB24: 3 KiB, not 4), and its stack holds the ray tree to the intro's depth, 5
+# (INTRO_MAX_DEPTH; tests/m0.sh measures the RAM).
 CM_BOARD_DEFS := -DINTRO_W=128 -DINTRO_H=64 -DBOARD_W=128 -DBOARD_H=64 \
                  -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8
 # The chips (platform/cortexm.S, cortexm.c): the SysTick's clock, the external interrupts.
 M3_CHIP_DEFS := -DCM_SYSTICK_HZ=50000000 -DCM_IRQS=64
 M0_CHIP_DEFS := -DCM_SYSTICK_HZ=16000000 -DCM_IRQS=32
 M3_BOARD_DEFS := -DRT_VIEW_TILES=32 -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8 $(M3_CHIP_DEFS)
-M0_BOARD_DEFS := -DRT_VIEW_TILES=16 -DBOARD_BAND_ROWS=4 -DRT_GRID_BUILD_MAX=4 -DINTRO_DEFAULT_GRID=4 \
-                 $(M0_CHIP_DEFS)
+M0_BOARD_DEFS := -DRT_VIEW_TILES=16 -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8 -DRT_PIXEL_RGB24=1 \
+                 -DINTRO_MAX_DEPTH=5 $(M0_CHIP_DEFS)
 M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_BOARD_DEFS) $(M3_BOARD_DEFS)
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments

@@ -129,7 +129,7 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
 static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0, const ss_area *area)
 {
     const int ls = c->lstride, stride = c->stride;
-    uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
+    rt_px *row = RT_PX(c->pixels, (long)(y0 - c->py0) * stride + x0);
     rt_sample *m = sm + ls;
     const rt_params *p = c->quad;
     ss_need(c, p, area, x0 + 1, y0, sm + 1);
@@ -137,10 +137,10 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0, const ss_area *are
     ss_need(c, p, area, x0 + 1, y0 + 1, m + 1);
     ss_need(c, p, area, x0 + 2, y0 + 1, m + 2);
     ss_need(c, p, area, x0 + 1, y0 + 2, m + ls + 1);
-    row[0] = ss_pixel_in(&sm->color);
-    row[1] = ss_pixel_in(&sm[1].color);
-    row[stride] = ss_pixel_in(&m->color);
-    row[stride + 1] = ss_pixel_in(&m[1].color);
+    rt_px_set(row, ss_pixel_in(&sm->color));
+    rt_px_set(RT_PX(row, 1), ss_pixel_in(&sm[1].color));
+    rt_px_set(RT_PX(row, stride), ss_pixel_in(&m->color));
+    rt_px_set(RT_PX(row, stride + 1), ss_pixel_in(&m[1].color));
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
@@ -204,7 +204,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         }
     }
     int cols = ss_cols(w, own), rows = ss_rows(h, own);
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * c->stride + x0);
     const rt_color *const kc[4] = {&sm->color, &sm[w].color, &k2->color, &k2[w].color};
     ss_fill(dst, c->stride, w, h, cols, rows, kc);
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
@@ -212,10 +212,10 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
      * column (nothing is ever traced inside a square that is not split). */
     for (int i = 1; i < cols; i++)
         if (sm[i].nhits)
-            dst[i] = rt_color_pixel(sm[i].color);
+            rt_px_set(RT_PX(dst, i), rt_color_pixel(sm[i].color));
     for (int j = 1; j < rows; j++)
         if (sm[j * ls].nhits)
-            dst[(long)j * c->stride] = rt_color_pixel(sm[j * ls].color);
+            rt_px_set(RT_PX(dst, (long)j * c->stride), rt_color_pixel(sm[j * ls].color));
 }
 
 /* Traces the top-level corners of row y into row[0..ncols]. */
@@ -239,7 +239,7 @@ static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt
                   .view = v,
                   .params = p,
                   .stats = stats,
-                  .pixels = pixels,
+                  .pixels = (rt_px *)pixels,
                   .stride = stride,
                   .py0 = py0,
                   .traced = traced,

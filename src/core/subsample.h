@@ -26,7 +26,7 @@ typedef struct ss_ctx {
     const rt_view *view;
     const rt_params *params;
     rt_stats *stats;
-    uint32_t *pixels; /* pixel row py0 of the frame */
+    rt_px *pixels; /* pixel row py0 of the frame */
     int stride;
     int py0;
     uint8_t *traced;
@@ -95,8 +95,7 @@ uint32_t ss_pixel(const rt_color *c);
 /* subsample_fill.c: bilinear fill of `cols` x `rows` pixels from dst (stride pixels per row;
  * cols <= w + 1, rows <= h + 1) from the colours of the corners k[]: (0, 0), (w, 0), (0, h),
  * (w, h), each in [0, 1]. */
-void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
-             const rt_color *const k[4]);
+void ss_fill(rt_px *dst, int stride, int w, int h, int cols, int rows, const rt_color *const k[4]);
 
 /* subsample_local.c: 1 when the local parts of the points a split of the square (corners k[],
  * w x h) adds can be interpolated from its corners'. */
