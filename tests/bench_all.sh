@@ -7,8 +7,8 @@
 # seconds, ROUNDS rounds). ARM926: tests/qemu_bench.sh, the fixed and the soft-float image at
 # 320x240, instructions per frame counted by QEMU (frames QEMU_FRAMES = "FIRST LAST STEP").
 # Cortex-M3: platform/m3/qemu.sh bench, the fixed image at the OLED's 128x64, the same frames,
-# fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames at grid 4 (the
-# board's default: 16 KiB of RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
+# fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames (16 KiB of
+# RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
 # Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
 # on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
 # seconds (make test). Progress goes to standard error; the file is also printed.
@@ -91,7 +91,7 @@ kept=""
                              ($2 == "float" ? "soft-float" : "fixed"), $3, $4, $5 / 1e6, $6 / 1e6, mhz * 1e6 / $5, mhz * 1e6 / $6 }
     $1 == "m3"      { printf "| Cortex-M3, QEMU | fixed | %s | %d | %.1f M instructions | %.1f M instructions | %.2f** | %.2f** |\n",
                              $3, $4, $5 / 1e6, $6 / 1e6, m3mhz * 1e6 / $5, m3mhz * 1e6 / $6 }
-    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed, grid 4 | %s | %d | %.1f M instructions | %.1f M instructions | %.2f / %.2f*** | %.2f / %.2f*** |\n",
+    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed | %s | %d | %.1f M instructions | %.1f M instructions | %.2f / %.2f*** | %.2f / %.2f*** |\n",
                              $3, $4, $5 / 1e6, $6 / 1e6, m0mhz * 1e6 / $5, m0fast * 1e6 / $5, m0mhz * 1e6 / $6, m0fast * 1e6 / $6 }' "$rows"
   echo
   echo "\\* ARM926 fps: **at a $CLOCK_MHZ MHz clock, assuming one instruction per cycle** (QEMU counts"

@@ -5,7 +5,7 @@
 #   platform/m0/qemu.sh frames [SETTINGS] N...             build/qemu-m0/fixed-NNNN.ppm (128x64 colour)
 #   platform/m0/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
 # SETTINGS are render's options --depth N (at most 5 on this board), --mode full|adaptive,
-# --grid N (4 on this board: its default), --threshold X, --min-contrib X, --octaves N and
+# --grid N (4 or 8 on the board), --threshold X, --min-contrib X, --octaves N and
 # --footprint on|off, as `--opt value` or `--opt=value` (platform/qemu-settings.sh splits them,
 # the board checks them). The board has
 # no display: frames leave band by band through semihosting. Both commands run under
@@ -13,7 +13,7 @@
 # the chip's 16 MHz, so a frame's count is exact to within 63 instructions a band, the same on
 # every run) and print `frame=N instructions=M` per frame, then `frames=K mean=M`, `worst=M` and
 # the guest's RAM use (`ram: ...`). A frame is byte for byte
-# `build/rt-fixed render --size 128x64 --grid 4 --frame N` (with the same settings). The exit
+# `build/rt-fixed render --size 128x64 --frame N` (with the same settings). The exit
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
 # With QEMU_PLUGIN=FILE.so,ARGS QEMU loads that TCG plugin (make qemu-profile REAL=m0).
 set -euo pipefail
