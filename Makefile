@@ -374,19 +374,25 @@ $(PROFILE_PLUGIN): platform/arm/qemu_profile.c
 M3_ARCH := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 # The Cortex-M boards' sizes, to fit their RAM: frames of 128x64; the scene structure for the
 # intro's 7 objects, 2 lights and 7 materials (intro.c refuses a compiled scene with more); the
-# view's 32 tiles a side (a 128-pixel row in tiles of 4). The M3 renders grids 4 and 8 in bands of
-# up to 8 rows (a row of grid-8 squares, platform/band.c); the M0 (16 KiB) grid 4 alone, its
-# default, in bands of 4 rows: the per-square arrays for grids up to RT_GRID_BUILD_MAX. The M0's
-# stack holds the ray tree to the intro's depth, 5 (--depth 6 would fill it; INTRO_MAX_DEPTH).
+# view's candidate tiles, 32 a side on the M3 (a 128-pixel row in tiles of 4), 16 on the M0 (tiles
+# of 8: half the view's 512 bytes of sets, the same pictures). Both render grids 4 and 8 (8 the
+# default) in bands of up to 8 rows (a row of grid-8 squares, platform/band.c), the per-square
+# arrays for grids up to RT_GRID_BUILD_MAX. The M0 (16 KiB) writes its band in 3-byte pixels
+# (RT_PIXEL_RGB24: 3 KiB, not 4), and its stack holds the ray tree to the intro's depth, 5
+# (INTRO_MAX_DEPTH; tests/m0.sh measures the RAM).
 CM_BOARD_DEFS := -DINTRO_W=128 -DINTRO_H=64 -DBOARD_W=128 -DBOARD_H=64 \
-                 -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8 -DRT_VIEW_TILES=32
-M3_BOARD_DEFS := -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8
-M0_BOARD_DEFS := -DBOARD_BAND_ROWS=4 -DRT_GRID_BUILD_MAX=4 -DINTRO_DEFAULT_GRID=4 -DINTRO_MAX_DEPTH=5
+                 -DRT_MAX_OBJECTS=8 -DRT_MAX_LIGHTS=2 -DRT_MAX_MATERIALS=8
+# The chips (platform/cortexm.S, cortexm.c): the SysTick's clock, the external interrupts.
+M3_CHIP_DEFS := -DCM_SYSTICK_HZ=50000000 -DCM_IRQS=64
+M0_CHIP_DEFS := -DCM_SYSTICK_HZ=16000000 -DCM_IRQS=32
+M3_BOARD_DEFS := -DRT_VIEW_TILES=32 -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8 $(M3_CHIP_DEFS)
+M0_BOARD_DEFS := -DRT_VIEW_TILES=16 -DBOARD_BAND_ROWS=8 -DRT_GRID_BUILD_MAX=8 -DRT_PIXEL_RGB24=1 \
+                 -DINTRO_MAX_DEPTH=5 $(M0_CHIP_DEFS)
 M3_CFLAGS := $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_BOARD_DEFS) $(M3_BOARD_DEFS)
 M3_LDFLAGS := $(M3_ARCH) -nostartfiles -T platform/m3/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments
 M3_OBJ := $(BUILD)/obj/m3-fixed
-M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/m3/m3.c $(GEN)/scene_intro.c) \
+M3_OBJS := $(patsubst %.c,$(M3_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/cortexm.c platform/m3/m3.c $(GEN)/scene_intro.c) \
            $(M3_OBJ)/start.o
 M3_ELF := $(BUILD)/m3/intro-fixed.elf
 M3_FRAMES ?= 0 425 875
@@ -396,9 +402,9 @@ $(M3_OBJ)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	$(ARM_CC) $(BASE_CFLAGS) $(or $(M3_COLD_OPT),$(OPT)) $(M3_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
 # The command line runs once per command, outside the counted rendering: built for size.
 $(M3_OBJ)/src/app/intro.o $(M3_OBJ)/src/scene/knobs.o $(M3_OBJ)/platform/board.o: M3_COLD_OPT := -Os
-$(M3_OBJ)/start.o: platform/m3/start.S
+$(M3_OBJ)/start.o: platform/cortexm.S Makefile
 	@mkdir -p $(@D)
-	$(ARM_CC) $(M3_ARCH) -c $< -o $@
+	$(ARM_CC) $(M3_ARCH) $(M3_CHIP_DEFS) -c $< -o $@
 $(M3_OBJ)/libfixmath/%.o: $(FIXMATH_STAMP)
 	@mkdir -p $(@D)
 	$(ARM_CC) -std=c11 $(OPT) $(M3_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$*.c -o $@
@@ -431,7 +437,7 @@ M0_CFLAGS := $(M0_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(CM_
 M0_LDFLAGS := $(M0_ARCH) -nostartfiles -T platform/m0/link.ld -Wl,--gc-sections -Wl,-z,noexecstack \
               -Wl,--no-warn-rwx-segments
 M0_OBJ := $(BUILD)/obj/m0-fixed
-M0_OBJS := $(patsubst %.c,$(M0_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/m0/m0.c $(GEN)/scene_intro.c) \
+M0_OBJS := $(patsubst %.c,$(M0_OBJ)/%.o,$(CORE_SRCS) src/app/intro.c platform/board.c platform/band.c platform/cortexm.c platform/m0/m0.c $(GEN)/scene_intro.c) \
            $(M0_OBJ)/start.o
 M0_ELF := $(BUILD)/m0/intro-fixed.elf
 
@@ -440,9 +446,9 @@ $(M0_OBJ)/%.o: %.c Makefile | $(FIXMATH_STAMP)
 	$(ARM_CC) $(BASE_CFLAGS) $(or $(M0_COLD_OPT),$(OPT)) $(M0_CFLAGS) $(CPPFLAGS) -DREAL_FIXED=1 -DFX_COUNT_EVENTS=0 -MMD -MP -c $< -o $@
 # The command line runs once per command, outside the counted rendering: built for size.
 $(M0_OBJ)/src/app/intro.o $(M0_OBJ)/src/scene/knobs.o $(M0_OBJ)/platform/board.o: M0_COLD_OPT := -Os
-$(M0_OBJ)/start.o: platform/m0/start.S
+$(M0_OBJ)/start.o: platform/cortexm.S Makefile
 	@mkdir -p $(@D)
-	$(ARM_CC) $(M0_ARCH) -c $< -o $@
+	$(ARM_CC) $(M0_ARCH) $(M0_CHIP_DEFS) -c $< -o $@
 $(M0_OBJ)/libfixmath/%.o: $(FIXMATH_STAMP)
 	@mkdir -p $(@D)
 	$(ARM_CC) -std=c11 $(OPT) $(M0_ARCH) -ffreestanding -ffunction-sections -fdata-sections $(FIXMATH_DEFS) -w -c $(FIXMATH_DIR)/libfixmath/$*.c -o $@

@@ -3,7 +3,8 @@
  * The band memory holds BOARD_BAND_ROWS rows of BOARD_W pixels (the Makefile sets both): a row of
  * the grid's squares at the intro's 64 rows (grid 8: rows 8 k .. 8 k + 7, the last band ending at
  * row 63). The board shows each band (board_band_show: the M3's OLED; nothing on the M0) before
- * its rows become RGB bytes in place for the file.
+ * its rows become RGB bytes in place for the file; a build whose renderer writes RGB bytes itself
+ * (RT_PIXEL_RGB24, the M0's) keeps 3 bytes a pixel and writes its rows as they are.
  */
 #include <stdint.h>
 
@@ -11,7 +12,13 @@
 #include "platform.h"
 #include "rt.h"
 
-static uint32_t band_px[BOARD_BAND_ROWS * BOARD_W];
+#if RT_PIXEL_RGB24
+#define BAND_WORDS (BOARD_BAND_ROWS * BOARD_W * 3 / 4)
+_Static_assert(BOARD_W % 4 == 0, "a band's RGB rows must fill whole words");
+#else
+#define BAND_WORDS (BOARD_BAND_ROWS * BOARD_W)
+#endif
+static uint32_t band_px[BAND_WORDS];
 static struct {
     int width, height; /* of the frame begun */
     int y0, rows;      /* the band last given out */
@@ -62,6 +69,12 @@ int plat_band_present(void)
         return -1;
     }
     board_band_show(band_px, BOARD_W, w, y0, rows);
+#if RT_PIXEL_RGB24
+    for (int y = 0; y < rows && band_file.fd >= 0; y++)
+        if (board_file_write(&band_file, (const uint8_t *)band_px + y * BOARD_W * 3,
+                             (uint32_t)w * 3) != 0)
+            return board_file_end(&band_file, 0);
+#else
     if (band_file.fd >= 0) {
         /* Each row becomes its 3 w bytes of RGB in place (the band has been shown): byte 3 x + 2
          * lies within pixel x, read before it is overwritten. */
@@ -78,5 +91,6 @@ int plat_band_present(void)
                 return board_file_end(&band_file, 0);
         }
     }
+#endif
     return y0 + rows == band_frame.height ? board_file_end(&band_file, 1) : 0;
 }

@@ -65,6 +65,13 @@ __attribute__((noreturn)) void board_fault(const char *what, const char *reg, ui
  * apart, on its display (or nowhere), before the band is written to the file. */
 void board_band_init(void);
 void board_band_show(const uint32_t *px, int stride, int width, int y0, int rows);
+/* (With RT_PIXEL_RGB24, px holds 3 bytes a pixel, R, G, B: the M0's, which has no display.) */
+
+/* ---- the Cortex-M boards' start and clock (platform/cortexm.S, platform/cortexm.c) --------
+ * cortexm.S calls board_main (the board's own: its devices, cm_clock_start of cortexm.h, then
+ * board_run) with .data copied, .bss clear and the stack painted; cortexm.c gives board_semi
+ * (bkpt 0xab), plat_time_ns from the SysTick and the faults' report. */
+void board_main(void);
 
 /* Ends the run: QEMU exits with `status`. */
 __attribute__((noreturn)) void board_exit(int status);

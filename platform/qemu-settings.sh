@@ -1,5 +1,32 @@
-# qemu-settings.sh: the render-settings parsing and the output filter shared by platform/arm/qemu.sh,
-# platform/m3/qemu.sh and platform/m0/qemu.sh (sourced, not run).
+# qemu-settings.sh: what platform/arm/qemu.sh, platform/m3/qemu.sh and platform/m0/qemu.sh share (sourced, not run, from the top of the repository): the error exit, the checks of the image, QEMU and QEMU_TIMEOUT, the render-settings parsing, the frame and bench arguments' checks, the semihosting argument list and the output filter.
+
+# die MESSAGE...: `qemu.sh: error: MESSAGE` on standard error, exit status 2.
+die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
+
+# qemu_checks ELF TARGET: the image ELF is built (else: run make TARGET), qemu-system-arm is
+# installed and QEMU_TIMEOUT (default 600) is a whole number of seconds, set in timeout_s.
+qemu_checks() {
+  [ -f "$1" ] || die "$1 is missing: run make $2 first"
+  command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
+  timeout_s=${QEMU_TIMEOUT:-600}
+  case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+}
+
+# qemu_frame_args N...: frames' arguments, at least one frame number, each a whole number.
+qemu_frame_args() {
+  local n
+  [ $# -ge 1 ] || die "frames wants at least one frame number"
+  for n in "$@"; do
+    case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
+  done
+}
+
+# qemu_bench_args ARGS...: bench's arguments, FIRST LAST STEP.
+qemu_bench_args() { [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"; }
+
+# semihosting ARGS...: QEMU's -semihosting-config value giving the guest the argument list
+# `intro ARGS...`.
+semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 #
 # qemu_settings ARGS... checks each argument's characters, then splits them: render's settings
 # (--depth, --mode, --grid, --threshold, --min-contrib, --octaves, --footprint; as `--opt value`

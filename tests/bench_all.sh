@@ -7,8 +7,8 @@
 # seconds, ROUNDS rounds). ARM926: tests/qemu_bench.sh, the fixed and the soft-float image at
 # 320x240, instructions per frame counted by QEMU (frames QEMU_FRAMES = "FIRST LAST STEP").
 # Cortex-M3: platform/m3/qemu.sh bench, the fixed image at the OLED's 128x64, the same frames,
-# fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames at grid 4 (the
-# board's default: 16 KiB of RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
+# fps at the board's 50 MHz. Cortex-M0: platform/m0/qemu.sh bench, the same frames (16 KiB of
+# RAM), fps at the nRF51's 16 MHz and at 133 MHz (an RP2040's clock).
 # The boards' fps are the cycle model's (the boards' qemu.sh print each frame's estimated cycles,
 # docs/arm.md, Cycle model): cycles divided by the clock, with the one-instruction-a-cycle figure,
 # an upper bound, in brackets.
@@ -107,7 +107,7 @@ kept=""
                              fps(mhz, $5, cm[$2]), fps(mhz, $6, cw[$2]) }
     $1 == "m3"      { printf "| Cortex-M3, QEMU | fixed | %s | %d | %s | %s | %s** | %s** |\n",
                              $3, $4, frame($5, cm["m3"]), frame($6, cw["m3"]), fps(m3mhz, $5, cm["m3"]), fps(m3mhz, $6, cw["m3"]) }
-    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed, grid 4 | %s | %d | %s | %s | %s / %s*** | %s / %s*** |\n",
+    $1 == "m0"      { printf "| Cortex-M0, QEMU | fixed | %s | %d | %s | %s | %s / %s*** | %s / %s*** |\n",
                              $3, $4, frame($5, cm["m0"]), frame($6, cw["m0"]), fps(m0mhz, $5, cm["m0"]), fps(m0fast, $5, cm["m0"]),
                              fps(m0mhz, $6, cw["m0"]), fps(m0fast, $6, cw["m0"]) }' "$rows"
   echo
@@ -125,7 +125,7 @@ kept=""
   echo "ARM926's; sending the bands to the OLED is not counted (docs/m3.md)."
   echo
   echo "\\*\\*\\* Cortex-M0 fps: **at the nRF51822's $M0_MHZ MHz / at $M0_FAST_MHZ MHz (an RP2040-class"
-  echo "clock; the RP2040's M0+ has its own, slightly faster, table)**: the same frames at grid 4, the board's default"
+  echo "clock; the RP2040's M0+ has its own, slightly faster, table)**: the same frames at grid 8, the default"
   echo "(grid 8's band and working storage do not fit its 16 KiB of RAM), with no long multiply, no"
   echo "divide and no CLZ (docs/m0.md)."
   echo

@@ -3,9 +3,8 @@
 #
 # Usage: tests/m0.sh [--print]   (--print: only the image's sizes, for make m0)
 # Expects make all m0. Prints `ok ...` / `FAIL ...` lines (tests/run.sh counts them) and exits 1
-# if any check fails. Frames are those of platform/m0/qemu.sh frames, in build/qemu-m0/; the
-# board renders grid 4 by default (grid 8's band and storage do not fit 16 KiB), so they are
-# compared with rt-fixed render --grid 4.
+# if any check fails. Frames are those of platform/m0/qemu.sh frames, in build/qemu-m0/, compared
+# with rt-fixed render --size 128x64 (the M3's frames).
 set -u
 cd "$(dirname "$0")/.." || exit 1
 
@@ -81,7 +80,7 @@ flash=$(($(section "$ELF" .vectors) + $(section "$ELF" .text) + $(section "$ELF"
 
 # ---- frames ---------------------------------------------------------------------------------
 for n in "${FRAMES[@]}"; do
-  "$B/rt-fixed" render --size 128x64 --grid 4 --frame "$n" -o "$T/host-$n.ppm" 2>/dev/null || fail "m0: host render of frame $n"
+  "$B/rt-fixed" render --size 128x64 --frame "$n" -o "$T/host-$n.ppm" 2>/dev/null || fail "m0: host render of frame $n"
 done
 for run in 1 2; do
   if platform/m0/qemu.sh frames "${FRAMES[@]}" >"$T/frames-$run.log" 2>&1; then
@@ -90,12 +89,12 @@ for run in 1 2; do
     fail "m0: qemu-m0-frames, run $run: $(tail -2 "$T/frames-$run.log" | tr '\n' ' ')"
   fi
   for n in "${FRAMES[@]}"; do
-    cmp -s "$(ppm "$n")" "$T/host-$n.ppm" || fail "m0: frame $n (run $run) differs from build/rt-fixed render --size 128x64 --grid 4 --frame $n"
+    cmp -s "$(ppm "$n")" "$T/host-$n.ppm" || fail "m0: frame $n (run $run) differs from build/rt-fixed render --size 128x64 --frame $n"
   done
 done
 same=0
 for n in "${FRAMES[@]}"; do cmp -s "$(ppm "$n")" "$T/host-$n.ppm" && same=$((same + 1)); done
-[ "$same" -eq ${#FRAMES[@]} ] && pass "m0: frames ${FRAMES[*]}, sent band by band over semihosting, bit-identical to rt-fixed render --size 128x64 --grid 4, in both runs"
+[ "$same" -eq ${#FRAMES[@]} ] && pass "m0: frames ${FRAMES[*]}, sent band by band over semihosting, bit-identical to rt-fixed render --size 128x64 (the default settings, grid 8), in both runs"
 if [ "$(grep -c '^frame=' "$T/frames-1.log")" -eq ${#FRAMES[@]} ] &&
    diff <(grep '^frame=' "$T/frames-1.log") <(grep '^frame=' "$T/frames-2.log") >/dev/null; then
   pass "m0: two runs give identical instruction counts ($(grep '^frame=' "$T/frames-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
@@ -104,19 +103,19 @@ else
 fi
 
 # Render settings on the board: byte for byte the host's with the same settings, not the default.
-for S in "--octaves 1 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2" \
+for S in "--octaves 1 --grid 4 --threshold 0.03 --depth 2 --min-contrib 0.05" "--mode full --octaves 2" \
          "--footprint=off --octaves=2"; do
   n=425
   # shellcheck disable=SC2086  # settings are words on purpose
   if platform/m0/qemu.sh frames $S $n >"$T/set.log" 2>&1 &&
-     "$B/rt-fixed" render --size 128x64 --grid 4 --frame $n $S -o "$T/host-set-$n.ppm" 2>/dev/null &&
+     "$B/rt-fixed" render --size 128x64 --frame $n $S -o "$T/host-set-$n.ppm" 2>/dev/null &&
      cmp -s "$(ppm $n)" "$T/host-set-$n.ppm" && ! cmp -s "$(ppm $n)" "$T/host-$n.ppm"; then
-    pass "m0: frame $n with $S bit-identical to rt-fixed render --grid 4 with them, not the default frame ($(sed -n 's/^frame=.* instructions=//p' "$T/set.log") instructions)"
+    pass "m0: frame $n with $S bit-identical to rt-fixed render with them, not the default frame ($(sed -n 's/^frame=.* instructions=//p' "$T/set.log") instructions)"
   else
     fail "m0: frame $n with $S: $(tail -2 "$T/set.log" | tr '\n' ' ')"
   fi
 done
-for S in "--grid 8" "--grid 16" "--grid 2" "--depth 6"; do
+for S in "--grid 16" "--grid 2" "--depth 6"; do
   # shellcheck disable=SC2086
   out=$(platform/m0/qemu.sh bench $S 0 0 1 2>&1)
   st=$?
@@ -139,7 +138,19 @@ else
   fail "m0: bench 0 1200 25: $(tail -2 "$T/bench.log" | tr '\n' ' ')"
 fi
 
+# Probe mode's stack within the RAM too.
+if platform/m0/qemu.sh bench --mode probe 0 1200 100 >"$T/probe.log" 2>&1; then
+  ram=$(sed -n 's/^ram: .* total=\([0-9]*\) bytes$/\1/p' "$T/probe.log")
+  if [ -n "$ram" ] && [ "$ram" -le "$RAM_LIMIT" ]; then
+    pass "m0: RAM in probe mode over 13 intro frames: $(grep '^ram:' "$T/probe.log" | sed 's/^ram: //') <= $RAM_LIMIT"
+  else
+    fail "m0: RAM in probe mode: $(grep '^ram:' "$T/probe.log") (limit $RAM_LIMIT)"
+  fi
+else
+  fail "m0: bench --mode probe 0 1200 100: $(tail -2 "$T/probe.log" | tr '\n' ' ')"
+fi
+
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.
-board_fault m0 "$T" "-mcpu=cortex-m0 -mthumb -mfloat-abi=soft" platform/m0/link.ld "$B/obj/m0-fixed" "platform/m0/m0.o platform/band.o" \
+board_fault m0 "$T" "-mcpu=cortex-m0 -mthumb -mfloat-abi=soft" platform/m0/link.ld "$B/obj/m0-fixed" "platform/m0/m0.o platform/band.o platform/cortexm.o" \
   '^error: CPU exception: HardFault (pc=0x' -M microbit
 lib_status

@@ -124,6 +124,6 @@ else
 fi
 
 # A CPU exception ends the run through the vector table with status 3 and one line naming it.
-board_fault m3 "$T" "-mcpu=cortex-m3 -mthumb -mfloat-abi=soft" platform/m3/link.ld "$B/obj/m3-fixed" "platform/m3/m3.o platform/band.o" \
+board_fault m3 "$T" "-mcpu=cortex-m3 -mthumb -mfloat-abi=soft" platform/m3/link.ld "$B/obj/m3-fixed" "platform/m3/m3.o platform/band.o platform/cortexm.o" \
   '^error: CPU exception: HardFault (pc=0x' -M lm3s6965evb
 lib_status

@@ -24,8 +24,8 @@
 # QEMU_TIMEOUT seconds (default 600): a hung guest is an error, not a hang.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. platform/qemu-settings.sh
 
-die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
 usage="usage: platform/arm/qemu.sh play|frames|bench [fixed|float|fixed16] [SETTINGS] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
@@ -37,17 +37,11 @@ if [ $# -ge 1 ] && { [ "$1" = fixed ] || [ "$1" = float ] || [ "$1" = fixed16 ];
   shift
 fi
 elf=build/arm/intro-$real.elf
-[ -f "$elf" ] || die "$elf is missing: run make arm first"
-command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
-timeout_s=${QEMU_TIMEOUT:-600}
-case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+qemu_checks "$elf" arm
 
 # The render settings go to the board first (it checks their values); the rest stay in order.
-. platform/qemu-settings.sh
 qemu_settings "$@"
 set -- "${args[@]}"
-# The guest's argument list goes through semihosting: arg=intro,arg=CMD,arg=...
-semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 common=(-M versatilepb -m 2 -serial stdio -monitor none
         -audiodev none,id=snd0 -global pl041.audiodev=snd0 -kernel "$elf")
 
@@ -62,17 +56,14 @@ case "$cmd" in
     exec qemu-system-arm "${common[@]}" -semihosting-config "$(semihosting play "${settings[@]}")"
     ;;
   frames)
-    [ $# -ge 1 ] || die "frames wants at least one frame number"
-    for n in "$@"; do
-      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
-    done
+    qemu_frame_args "$@"
     # no file is removed: each frame the board writes replaces its file whole (a temporary file
     # renamed), so a refused run leaves the earlier frames as they were
     mkdir -p build/qemu
     set -- --out "build/qemu/$real" "$@"
     ;;
   bench)
-    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    qemu_bench_args "$@"
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
 esac

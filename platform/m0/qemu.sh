@@ -5,7 +5,7 @@
 #   platform/m0/qemu.sh frames [SETTINGS] N...             build/qemu-m0/fixed-NNNN.ppm (128x64 colour)
 #   platform/m0/qemu.sh bench  [SETTINGS] FIRST LAST STEP  frames FIRST..LAST every STEP, no files
 # SETTINGS are render's options --depth N (at most 5 on this board), --mode full|adaptive,
-# --grid N (4 on this board: its default), --threshold X, --min-contrib X, --octaves N and
+# --grid N (4 or 8 on the board), --threshold X, --min-contrib X, --octaves N and
 # --footprint on|off, as `--opt value` or `--opt=value` (platform/qemu-settings.sh splits them,
 # the board checks them). The board has
 # no display: frames leave band by band through semihosting. Both commands run under
@@ -17,41 +17,35 @@
 # Cortex-M0 timing model's estimate (the TCG plugin build/arm/qemu_profile.so with cpu=m0,
 # platform/qemu-cycles.sh; docs/m0.md, Cycle model), exact and repeatable like the counts;
 # QEMU_CYCLES_OPTS and QEMU_CYCLES_OUT as for platform/arm/qemu.sh. A frame is byte for byte
-# `build/rt-fixed render --size 128x64 --grid 4 --frame N` (with the same settings). The exit
+# `build/rt-fixed render --size 128x64 --frame N` (with the same settings). The exit
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. platform/qemu-settings.sh
 
-die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
 usage="usage: platform/m0/qemu.sh frames|bench [SETTINGS] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
 cmd=$1
 shift
 elf=build/m0/intro-fixed.elf
-[ -f "$elf" ] || die "$elf is missing: run make m0 first"
-command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
-timeout_s=${QEMU_TIMEOUT:-600}
-case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+qemu_checks "$elf" m0
 
 # The render settings go to the board first (it checks their values); the rest stay in order.
-. platform/qemu-settings.sh
 qemu_settings "$@"
 set -- "${args[@]+"${args[@]}"}"
-semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 
 case "$cmd" in
   frames)
-    [ $# -ge 1 ] || die "frames wants at least one frame number"
+    qemu_frame_args "$@"
     mkdir -p build/qemu-m0
     for n in "$@"; do
-      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
       rm -f "build/qemu-m0/fixed-$(printf '%04d' "$((10#$n))").ppm"
     done
     set -- --out build/qemu-m0/fixed "$@"
     ;;
   bench)
-    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    qemu_bench_args "$@"
     ;;
   *) die "unknown command '$cmd'; $usage" ;;
 esac

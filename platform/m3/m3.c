@@ -1,4 +1,4 @@
-/* m3.c: the bare-metal Cortex-M3 backend (QEMU lm3s6965evb): SSD0323 OLED over SSI, bands instead of a frame, UART log, SysTick clock, semihosting files, arguments and exit.
+/* m3.c: the bare-metal Cortex-M3 backend (QEMU lm3s6965evb): SSD0323 OLED over SSI, bands instead of a frame, UART log, the 50 MHz clock; semihosting, the SysTick and faults from platform/cortexm.c, files, arguments and exit from platform/board.c.
  *
  * The Stellaris LM3S6965 has 64 KiB of SRAM and its evaluation board a 128x64 OLED with 16 grey
  * levels behind an SSD0323 controller, which keeps the picture itself: frames come here band by
@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "board.h"
+#include "cortexm.h"
 #include "platform.h"
 
 #define M3_W 128
@@ -34,7 +35,6 @@
 #define M3_RCC_XTAL_8MHZ (14u << 6)
 #define M3_RCC_OSCSRC_MASK (3u << 4)
 #define M3_PLL_LOCKED (1u << 6)
-#define M3_CLOCK_NS 20u /* 50 MHz */
 
 /* GPIO ports (PL061): DATA is addressed through a mask in address bits 9:2. */
 #define M3_GPIO_A 0x40004000u
@@ -67,47 +67,11 @@
 #define M3_UART_CTL M3_REG(0x4000c030u)
 #define M3_UART_TXFF (1u << 5)
 
-/* SysTick and the interrupt control register's "SysTick pending" bit. */
-#define M3_SYST_CSR M3_REG(0xe000e010u)
-#define M3_SYST_RVR M3_REG(0xe000e014u)
-#define M3_SYST_CVR M3_REG(0xe000e018u)
-#define M3_ICSR M3_REG(0xe000ed04u)
-#define M3_PENDSTSET (1u << 26)
-#define M3_SYST_MAX 0xffffffu
-
-static volatile uint32_t m3_wraps; /* SysTick periods elapsed */
-
-int board_semi(uint32_t op, void *arg)
-{
-    register uint32_t r0 __asm__("r0") = op;
-    register void *r1 __asm__("r1") = arg;
-    __asm__ volatile("bkpt 0xab" : "+r"(r0) : "r"(r1) : "memory");
-    return (int)r0;
-}
-
 void board_putc(char c)
 {
     while (M3_UART_FR & M3_UART_TXFF)
         ;
     M3_UART_DR = (uint32_t)(unsigned char)c;
-}
-
-/* The SysTick exception (start.S's vector table): one more period of 2^24 steps. */
-void m3_systick(void);
-void m3_systick(void) { m3_wraps++; }
-
-uint64_t plat_time_ns(void)
-{
-    uint32_t primask;
-    __asm__ volatile("mrs %0, primask\n\tcpsid i" : "=r"(primask)::"memory");
-    uint32_t wraps = m3_wraps, v = M3_SYST_CVR;
-    if (M3_ICSR & M3_PENDSTSET) { /* wrapped, its exception not taken yet */
-        v = M3_SYST_CVR;
-        wraps++;
-    }
-    __asm__ volatile("msr primask, %0" ::"r"(primask) : "memory");
-    uint64_t steps = ((uint64_t)wraps << 24) + (M3_SYST_MAX - v);
-    return steps * M3_CLOCK_NS;
 }
 
 /* ---- the OLED ------------------------------------------------------------------------------ */
@@ -171,18 +135,6 @@ void board_band_show(const uint32_t *px, int stride, int width, int y0, int rows
 
 /* ---- start-up, the end of a run ------------------------------------------------------------ */
 
-/* Called by start.S's m3_trap for any fault or unexpected exception: logs it and where it
- * happened (the stacked pc), and ends the run with status 3. */
-void m3_fault(uint32_t pc, uint32_t ipsr);
-void m3_fault(uint32_t pc, uint32_t ipsr)
-{
-    static const char *const names[16] = {
-        "thread", "reset", "NMI", "HardFault", "MemManage", "BusFault", "UsageFault", "7",
-        "8",      "9",     "10",  "SVCall",    "DebugMon",  "13",       "PendSV",     "SysTick"};
-    uint32_t n = ipsr & 0x1ff;
-    board_fault(n < 16 ? names[n] : "interrupt", "pc", pc);
-}
-
 /* 50 MHz from the PLL (8 MHz crystal, 200 MHz / 4), the way the chip's manual orders it. */
 static void m3_clock_init(void)
 {
@@ -195,14 +147,7 @@ static void m3_clock_init(void)
     for (int i = 0; i < 100000 && !(M3_RIS & M3_PLL_LOCKED); i++)
         ;
     M3_RCC = rcc & ~M3_RCC_BYPASS;
-    /* SysTick on the processor clock, its exception every 2^24 steps (0.34 s). */
-    M3_SYST_RVR = M3_SYST_MAX;
-    M3_SYST_CVR = 0;
-    M3_SYST_CSR = 7;
-    /* The count reads 0 until the first step loads it, which plat_time_ns would take for the
-     * end of a period: wait for it. */
-    while (M3_SYST_CVR == 0)
-        ;
+    cm_clock_start(); /* the SysTick at 50 MHz, a period of 2^24 steps 0.34 s */
 }
 
 static void m3_io_init(void)
@@ -230,9 +175,8 @@ static void m3_io_init(void)
     m3_oled_init();
 }
 
-/* Called by start.S with .data copied, .bss clear and the stack painted. */
-void m3_main(void);
-void m3_main(void)
+/* Called by platform/cortexm.S with .data copied, .bss clear and the stack painted. */
+void board_main(void)
 {
     static char cmdline[256];
     static char *argv[24];

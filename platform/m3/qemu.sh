@@ -21,18 +21,15 @@
 # status is the guest's; QEMU runs under a time limit, QEMU_TIMEOUT seconds (default 600).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. platform/qemu-settings.sh
 
-die() { printf 'qemu.sh: error: %s\n' "$*" >&2; exit 2; }
 usage="usage: platform/m3/qemu.sh play|frames|bench|show [SETTINGS] [ARGS...] (see the file's header)"
 
 [ $# -ge 1 ] || die "$usage"
 cmd=$1
 shift
 elf=build/m3/intro-fixed.elf
-[ -f "$elf" ] || die "$elf is missing: run make m3 first"
-command -v qemu-system-arm >/dev/null || die "qemu-system-arm is not installed: run ./setup.sh --arm"
-timeout_s=${QEMU_TIMEOUT:-600}
-case "$timeout_s" in ''|*[!0-9]*|0) die "QEMU_TIMEOUT must be a whole number of seconds, 1 or more, not '$timeout_s'" ;; esac
+qemu_checks "$elf" m3
 
 screen=
 if [ "$cmd" = show ]; then
@@ -42,10 +39,8 @@ if [ "$cmd" = show ]; then
   case "$screen" in *.ppm) ;; *) die "show: the screen file must end in .ppm, not '$screen'" ;; esac
 fi
 # The render settings go to the board first (it checks their values); the rest stay in order.
-. platform/qemu-settings.sh
 qemu_settings "$@"
 set -- "${args[@]+"${args[@]}"}"
-semihosting() { printf 'enable=on,target=native,arg=intro'; printf ',arg=%s' "$@"; }
 common=(-M lm3s6965evb -kernel "$elf")
 
 case "$cmd" in
@@ -60,17 +55,14 @@ case "$cmd" in
       2> >(sed -u '/Timer with period zero, disabling/d' >&2)
     ;;
   frames)
-    [ $# -ge 1 ] || die "frames wants at least one frame number"
-    for n in "$@"; do
-      case "$n" in *[!0-9]*) die "frame '$n' is not a whole number" ;; esac
-    done
+    qemu_frame_args "$@"
     # no file is removed: each frame the board writes replaces its file whole (a temporary file
     # renamed), so a refused run leaves the earlier frames as they were
     mkdir -p build/qemu-m3
     set -- --out build/qemu-m3/fixed "$@"
     ;;
   bench)
-    [ $# -eq 3 ] || die "bench wants FIRST LAST STEP"
+    qemu_bench_args "$@"
     ;;
   show)
     [ $# -eq 1 ] || die "show wants one frame number and the screen file"

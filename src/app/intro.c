@@ -37,12 +37,12 @@
 #define INTRO_H 240
 #endif
 
-/* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): two rows of
- * corners and one square's samples, for the grids the board offers, 4 and 8 (8 is the
- * default), or 4 alone where the build renders no grid above (RT_GRID_BUILD_MAX: the Cortex-M0,
- * whose 16 KiB of RAM take grid 4's storage and band, not grid 8's; its default is then 4,
- * INTRO_DEFAULT_GRID). Grids 2 and 16 need about 10 KB more, beyond the boards' RAM budgets. */
-#define INTRO_WORK(g) (2 * ((INTRO_W - 1 + (g)-1) / (g) + 1) + ((g) + 1) * ((g) + 1))
+/* Working storage of the adaptive and probe modes at INTRO_W (rt_render_work_size): a row of
+ * corners and one square's samples, for the grids the boards offer, 4 and 8 (8 is the default),
+ * or 4 alone where the build renders no grid above (RT_GRID_BUILD_MAX; its default is then 4,
+ * INTRO_DEFAULT_GRID). Grid 16 needs about 10 KB more, beyond the boards' RAM budgets; grid 2,
+ * whose storage would fit, is not offered (app_main). */
+#define INTRO_WORK(g) ((INTRO_W - 1 + (g)-1) / (g) + 1 + ((g) + 1) * ((g) + 1))
 #if RT_GRID_BUILD_MAX >= 8
 #define INTRO_WORK_SAMPLES (INTRO_WORK(4) > INTRO_WORK(8) ? INTRO_WORK(4) : INTRO_WORK(8))
 #else
@@ -364,7 +364,7 @@ int app_main(int argc, char **argv)
     }
 #endif
     if (rt_render_work_size(&p, INTRO_W) > sizeof intro_work ||
-        (RT_GRID_BUILD_MAX < RT_GRID_MAX && p.grid > RT_GRID_BUILD_MAX)) {
+        (RT_GRID_BUILD_MAX < RT_GRID_MAX && (p.grid > RT_GRID_BUILD_MAX || p.grid < 4))) {
         intro_line l = {.n = 0};
         intro_str(&l,
                   RT_GRID_BUILD_MAX >= 8

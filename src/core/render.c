@@ -11,10 +11,10 @@ static void render_full(const rt_scene *s, const rt_view *v, const rt_params *p,
     int y0 = (int)((long)v->height * band / nbands),
         y1 = (int)((long)v->height * (band + 1) / nbands);
     for (int y = y0; y < y1; y++) {
-        uint32_t *row = pixels + (long)(y - py0) * stride;
+        rt_px *row = RT_PX((rt_px *)pixels, (long)(y - py0) * stride);
         for (int x = 0; x < v->width; x++) {
             rt_trace_pixel(s, v, p, x, y, stats, &sample);
-            row[x] = rt_color_pixel(sample.color);
+            rt_px_set(RT_PX(row, x), rt_color_pixel(sample.color));
         }
         if (traced)
             for (int x = 0; x < v->width; x++)

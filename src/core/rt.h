@@ -125,6 +125,10 @@ typedef struct rt_scene {
 
 /* Tiles per row and column of rt_view's candidate sets: the tiles are the smallest power-of-two
  * squares (at least 4 pixels) that keep both counts within it. */
+#ifndef RT_PIXEL_RGB24
+#define RT_PIXEL_RGB24 0 /* 1: pixels of 3 bytes, R, G, B (rt_local.h, rt_px) */
+#endif
+
 #ifndef RT_VIEW_TILES
 #define RT_VIEW_TILES 40 /* the Cortex-M boards' 128x64 frames need 32 (Makefile) */
 #endif

@@ -485,4 +485,29 @@ static inline uint32_t rt_color_pixel(rt_color c)
 rt_color rt_texture_color(const rt_material *m, vec3 p, int max_octaves, real footprint,
                           rt_stats *st, uint8_t *cell);
 
+/* The pixel memory the renderer writes (the `uint32_t *` buffers of rt.h): a 0x00RRGGBB word a
+ * pixel, or, where the build sets RT_PIXEL_RGB24 (the Cortex-M0, whose band it makes a quarter
+ * smaller), three bytes R, G, B, strides still counted in pixels. rt_px is its element, RT_PX(p, i)
+ * pixel i from p, rt_px_set and rt_px_get a pixel's 0x00RRGGBB value. */
+#if RT_PIXEL_RGB24
+typedef uint8_t rt_px;
+#define RT_PX_N 3
+static inline void rt_px_set(rt_px *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 16);
+    p[1] = (uint8_t)(v >> 8);
+    p[2] = (uint8_t)v;
+}
+static inline uint32_t rt_px_get(const rt_px *p)
+{
+    return (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+}
+#else
+typedef uint32_t rt_px;
+#define RT_PX_N 1
+static inline void rt_px_set(rt_px *p, uint32_t v) { *p = v; }
+static inline uint32_t rt_px_get(const rt_px *p) { return *p; }
+#endif
+#define RT_PX(p, i) ((p) + (i)*RT_PX_N)
+
 #endif

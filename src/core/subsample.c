@@ -24,7 +24,7 @@ FX_BOARD_THUMB unsigned long rt_render_work_size(const rt_params *p, int width)
         return 0;
     unsigned long row = (unsigned long)ss_count(width, p->grid) + 1;
     unsigned long side = (unsigned long)p->grid + 1;
-    return (2 * row + side * side) * sizeof(rt_sample);
+    return (row + side * side) * sizeof(rt_sample);
 }
 
 FX_BOARD_THUMB int rt_render_band_count(const rt_params *p, int height)
@@ -116,10 +116,10 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
     const rt_sample *at = &c->lat[(y0 - c->sy) * c->lstride + (x0 - c->sx)];
     for (int j = 0; j < 2 && nx == 2; j++) /* top, bottom: k[0], k[1] and k[2], k[3] */
         if (!at[j * h * c->lstride + w / 2].nhits && ss_probe_edge(k[2 * j], k[2 * j + 1]))
-            ss_probe_new(c, x0 + w / 2, y0 + j * h, k[2 * j], k[2 * j + 1], c->wt[w][w / 2], w);
+            ss_probe_new(c, x0 + w / 2, y0 + j * h, k[2 * j], k[2 * j + 1], c->half[w], w);
     for (int i = 0; i < 2 && ny == 2; i++) /* left, right: k[0], k[2] and k[1], k[3] */
         if (!at[h / 2 * c->lstride + i * w].nhits && ss_probe_edge(k[i], k[i + 2]))
-            ss_probe_new(c, x0 + i * w, y0 + h / 2, k[i], k[i + 2], c->wt[h][h / 2], h);
+            ss_probe_new(c, x0 + i * w, y0 + h / 2, k[i], k[i + 2], c->half[h], h);
 }
 
 /* A split 2x2 square that does not end the frame (sm: its (0, 0) in the lattice): what its
@@ -129,7 +129,7 @@ static __attribute__((noinline)) void ss_probe_split(ss_ctx *c, int x0, int y0, 
 static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0, const ss_area *area)
 {
     const int ls = c->lstride, stride = c->stride;
-    uint32_t *row = c->pixels + (long)(y0 - c->py0) * stride + x0;
+    rt_px *row = RT_PX(c->pixels, (long)(y0 - c->py0) * stride + x0);
     rt_sample *m = sm + ls;
     const rt_params *p = c->quad;
     ss_need(c, p, area, x0 + 1, y0, sm + 1);
@@ -137,10 +137,10 @@ static void ss_quad(ss_ctx *c, rt_sample *sm, int x0, int y0, const ss_area *are
     ss_need(c, p, area, x0 + 1, y0 + 1, m + 1);
     ss_need(c, p, area, x0 + 2, y0 + 1, m + 2);
     ss_need(c, p, area, x0 + 1, y0 + 2, m + ls + 1);
-    row[0] = ss_pixel_in(&sm->color);
-    row[1] = ss_pixel_in(&sm[1].color);
-    row[stride] = ss_pixel_in(&m->color);
-    row[stride + 1] = ss_pixel_in(&m[1].color);
+    rt_px_set(row, ss_pixel_in(&sm->color));
+    rt_px_set(RT_PX(row, 1), ss_pixel_in(&sm[1].color));
+    rt_px_set(RT_PX(row, stride), ss_pixel_in(&m->color));
+    rt_px_set(RT_PX(row, stride + 1), ss_pixel_in(&m[1].color));
 }
 
 /* The square with corners (x0, y0) and (x0 + w, y0 + h), at subdivision `level` (sm: its
@@ -222,7 +222,7 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
         }
     }
     int cols = ss_cols(w, own), rows = ss_rows(h, own);
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * c->stride + x0);
     const rt_color *const kc[4] = {&sm->color, &sm[w].color, &k2->color, &k2[w].color};
     ss_fill(dst, c->stride, w, h, cols, rows, kc);
     /* Points a neighbour traced for its own decisions show their traced colour. They can only
@@ -230,10 +230,10 @@ static void ss_square(ss_ctx *c, rt_sample *sm, int x0, int y0, int w, int h, in
      * column (nothing is ever traced inside a square that is not split). */
     for (int i = 1; i < cols; i++)
         if (sm[i].nhits)
-            dst[i] = rt_color_pixel(sm[i].color);
+            rt_px_set(RT_PX(dst, i), rt_color_pixel(sm[i].color));
     for (int j = 1; j < rows; j++)
         if (sm[j * ls].nhits)
-            dst[(long)j * c->stride] = rt_color_pixel(sm[j * ls].color);
+            rt_px_set(RT_PX(dst, (long)j * c->stride), rt_color_pixel(sm[j * ls].color));
 }
 
 /* Traces the top-level corners of row y into row[0..ncols]. */
@@ -278,7 +278,7 @@ static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt
                   .view = v,
                   .params = p,
                   .stats = stats,
-                  .pixels = pixels,
+                  .pixels = (rt_px *)pixels,
                   .stride = stride,
                   .py0 = py0,
                   .traced = traced,
@@ -286,8 +286,7 @@ static void ss_ctx_init(ss_ctx *c, const rt_scene *s, const rt_view *v, const rt
                   .lstride = p->grid + 1,
                   .p_quad = *p};
     for (int n = 1; n <= p->grid; n++)
-        for (int i = 0; i <= n; i++)
-            c->wt[n][i] = r_from_ratio(i, n);
+        c->half[n] = r_from_ratio(n / 2, n);
     if (p->mode != RT_MODE_FULL)
         c->p_quad.mode = RT_MODE_FULL;
     if (RT_COMPILED_PROBE && p->mode == RT_MODE_PROBE)
@@ -333,28 +332,24 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
     const rt_sample *band_edge = edges ? (const rt_sample *)edges + (long)band * (ncols + 1) : NULL;
     const size_t row_bytes = (size_t)(ncols + 1) * sizeof(rt_sample);
 
-    /* Two rows of corners: row r of the frame's corners lives in row r % 2 of `work`, so bands
-     * rendered in order find their top row where the band before left it (RT_BAND_KEEP). */
-    rt_sample *top = work, *bot = top + ncols + 1;
-    rt_sample *const lat = bot + ncols + 1;
+    /* One row of corners: the top corners of the row of squares being rendered, each replaced by
+     * the bottom one below it as the squares reach it. A square traces its bottom right corner
+     * (the first square its bottom left one too); its other corners the lattice keeps from the
+     * square before. The corners are shaded in full, so the order does not change them. After a
+     * band, the row holds its bottom corners, where the band below finds them (RT_BAND_KEEP). */
+    rt_sample *const corners = work;
+    rt_sample *const lat = corners + ncols + 1;
     const int ls = c.lstride;
     c.lat = lat;
-    if (r0 % 2) {
-        top = bot;
-        bot = work;
-    }
     if (band_edge)
-        memcpy(top, band_edge, row_bytes);
+        memcpy(corners, band_edge, row_bytes);
     else if (mem != RT_BAND_KEEP)
-        ss_corner_row(&c, top, ncols, ss_corner(r0, g, height));
+        ss_corner_row(&c, corners, ncols, ss_corner(r0, g, height));
     for (int r = r0; r < r1; r++) {
         int y0 = ss_corner(r, g, height), h = ss_corner(r + 1, g, height) - y0;
-        if (h == 0)
-            memcpy(bot, top, row_bytes); /* a one-pixel-high frame */
-        else if (band_edge && r == r1 - 1)
-            memcpy(bot, band_edge + ncols + 1, row_bytes);
-        else
-            ss_corner_row(&c, bot, ncols, y0 + h);
+        /* the bottom corners given (rt_render_edge); none in a one-pixel-high frame (h 0: they
+         * are the top ones, the lattice's row h its row 0) */
+        const rt_sample *given = band_edge && r == r1 - 1 && h > 0 ? band_edge + ncols + 1 : NULL;
         c.sy = y0;
         int prev_w = -1;
         /* The lattice holds no traced point but its corners (the square before was not split
@@ -371,7 +366,7 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             } else {
                 for (int ly = 0; ly <= h; ly++, row += ls) {
                     /* The left edge is the square before's right edge: keep what it traced
-                     * (its corners too: they are top[i] and bot[i], copied there before). */
+                     * (its corners too). */
                     if (prev_w >= 0 && row[prev_w].nhits) {
                         row[0] = row[prev_w];
                         edge |= ly != 0 && ly != h;
@@ -387,12 +382,24 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
                         q->nhits = 0;
                 }
             }
-            if (prev_w < 0) {
-                lat[0] = top[i];
-                hrow[0] = bot[i];
+            /* Its top corners into the lattice; then its bottom right one (the first square's
+             * bottom left one too) into the row of corners, in place of the top one the lattice
+             * now keeps, and into the lattice. (In a one-pixel-wide frame, w 0, the one corner
+             * is corners[1]: corners[0] is left behind, and lat[w] is lat[0].) */
+            if (prev_w < 0)
+                lat[0] = corners[0];
+            lat[w] = corners[i + 1];
+            for (int k = prev_w < 0 ? 0 : w;; k = w) {
+                rt_sample *b = &corners[i + (k == w)];
+                if (given)
+                    *b = given[i + (k == w)];
+                else if (h > 0)
+                    ss_shade(&c, c.params, NULL, x0 + k, y0 + h, b);
+                if (h > 0)
+                    hrow[k] = *b;
+                if (k == w)
+                    break;
             }
-            lat[w] = top[i + 1];
-            hrow[w] = bot[i + 1];
             c.split = 0;
             c.quad = w == g && h == g ? &c.p_quad : p;
             ss_square(&c, lat, x0, y0, w, h, 0,
@@ -400,9 +407,6 @@ void rt_render_adaptive(const rt_scene *s, const rt_view *v, const rt_params *p,
             clean = !c.split && !edge;
             prev_w = w;
         }
-        rt_sample *t = top;
-        top = bot;
-        bot = t;
     }
 }
 

@@ -26,7 +26,7 @@ typedef struct ss_ctx {
     const rt_view *view;
     const rt_params *params;
     rt_stats *stats;
-    uint32_t *pixels; /* pixel row py0 of the frame */
+    rt_px *pixels; /* pixel row py0 of the frame */
     int stride;
     int py0;
     uint8_t *traced;
@@ -47,7 +47,7 @@ typedef struct ss_ctx {
      * secondary rays), and the objects that show what their secondary rays meet at its scale */
     uint32_t noise_beyond, flat_view;
     dir3 ray; /* ss_hit_at: the last primary ray's direction */
-    real wt[RT_GRID_BUILD_MAX + 1][RT_GRID_BUILD_MAX + 1]; /* wt[n][i] = i / n */
+    real half[RT_GRID_BUILD_MAX + 1]; /* half[n] = (n / 2) / n: a probed edge's middle */
     rt_local loc; /* ss_local's result for the point traced */
 } ss_ctx;
 
@@ -98,8 +98,7 @@ uint32_t ss_pixel(const rt_color *c);
 /* subsample_fill.c: bilinear fill of `cols` x `rows` pixels from dst (stride pixels per row;
  * cols <= w + 1, rows <= h + 1) from the colours of the corners k[]: (0, 0), (w, 0), (0, h),
  * (w, h), each in [0, 1]. */
-void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
-             const rt_color *const k[4]);
+void ss_fill(rt_px *dst, int stride, int w, int h, int cols, int rows, const rt_color *const k[4]);
 
 /* subsample_local.c: 1 when the local parts of the points a split of the square (corners k[],
  * w x h) adds can be interpolated from its corners'. */

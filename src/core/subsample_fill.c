@@ -83,16 +83,16 @@ static inline void ss_quad_ch(int32_t a, int32_t b, int32_t c, int32_t d, int sh
 
 /* One row of the fill: pixel 0 from the V forms v0..v2 (SS_V), pixels 1..n-1 by adding the steps
  * s0..s2 (V units) once per pixel. */
-static inline __attribute__((always_inline)) void ss_row(uint32_t *dst, int n, int32_t v0,
-                                                         int32_t v1, int32_t v2, int32_t s0,
-                                                         int32_t s1, int32_t s2)
+static inline __attribute__((always_inline)) void ss_row(rt_px *dst, int n, int32_t v0, int32_t v1,
+                                                         int32_t v2, int32_t s0, int32_t s1,
+                                                         int32_t s2)
 {
-    dst[0] = ss_pack(v0, v1, v2);
+    rt_px_set(dst, ss_pack(v0, v1, v2));
     for (int i = 1; i < n; i++) {
         v0 += s0;
         v1 += s1;
         v2 += s2;
-        dst[i] = ss_pack(v0, v1, v2);
+        rt_px_set(RT_PX(dst, i), ss_pack(v0, v1, v2));
     }
 }
 
@@ -104,8 +104,7 @@ static inline __attribute__((always_inline)) void ss_row(uint32_t *dst, int n, i
  * the same integers); column w is r itself. As |s - (r - l) / w| <= 1/2 + |r - l|
  * |1/w - ss_wrow(w)[1] / 2^16| <= 1, pixel i is within i <= 15 of the exact l + i (r - l) / w, a
  * value in [0, 65536]: every channel packed lies in [-15, 65551], inside ss_pack's range. */
-void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
-             const rt_color *const k[4])
+void ss_fill(rt_px *dst, int stride, int w, int h, int cols, int rows, const rt_color *const k[4])
 {
     /* q: the corners' channels, k0 k1 (row 0's ends) then k2 k3 (row h's) */
     int32_t q[12], m[6];
@@ -120,10 +119,10 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         uint32_t p[4] = {0, 0, 0, 0};
         for (int ch = 0; ch < 3; ch++)
             ss_quad_ch(q[ch], q[3 + ch], q[6 + ch], q[9 + ch], 16 - 8 * ch, p);
-        dst[0] = p[0];
-        dst[1] = p[1];
-        dst[stride] = p[2];
-        dst[stride + 1] = p[3];
+        rt_px_set(dst, p[0]);
+        rt_px_set(RT_PX(dst, 1), p[1]);
+        rt_px_set(RT_PX(dst, stride), p[2]);
+        rt_px_set(RT_PX(dst, stride + 1), p[3]);
         return;
     }
     if (q[0] == q[3] && q[0] == q[6] && q[0] == q[9] && q[1] == q[4] && q[1] == q[7] &&
@@ -131,9 +130,9 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
         /* One colour (dark or empty parts of a frame): every l, r the rows below compute is
          * that colour and every step 0, so each of the pixels (columns 0..cols-1) gets it. */
         uint32_t px = ss_pack(SS_V(q[0]), SS_V(q[1]), SS_V(q[2]));
-        for (int j = 0; j < rows; j++, dst += stride)
+        for (int j = 0; j < rows; j++, dst = RT_PX(dst, stride))
             for (int i = 0; i < cols; i++)
-                dst[i] = px;
+                rt_px_set(RT_PX(dst, i), px);
         return;
     }
 #ifndef __OPTIMIZE_SIZE__
@@ -152,7 +151,7 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             e[2 * n] = q[n] * h + (1 << (kh - 1)) + (e[2 * n + 1] >> 31);
         }
         const int right = cols > w, inner = cols < w ? cols : w;
-        for (int j = 0; j < rows; j++, dst += stride) {
+        for (int j = 0; j < rows; j++, dst = RT_PX(dst, stride)) {
             const int32_t l0 = (e[0] + j * e[1]) >> kh, l1 = (e[2] + j * e[3]) >> kh,
                           l2 = (e[4] + j * e[5]) >> kh;
             const int32_t r0 = (e[6] + j * e[7]) >> kh, r1 = (e[8] + j * e[9]) >> kh,
@@ -163,7 +162,7 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
                           s2 = ss_shr_round(r2 - l2, kw) * 255;
             ss_row(dst, inner, v0, v1, v2, s0, s1, s2);
             if (right)
-                dst[w] = ss_pack(SS_V(r0), SS_V(r1), SS_V(r2));
+                rt_px_set(RT_PX(dst, w), ss_pack(SS_V(r0), SS_V(r1), SS_V(r2)));
         }
         return;
     }
@@ -172,7 +171,7 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
     int32_t sx = ss_wrow(w)[1];      /* w <= 1: ss_wq[1], 0 (unused) */
     int inner = cols < w ? cols : w; /* columns 0..inner-1 come from the left edge and steps */
     int right = cols > w && w > 0;   /* column w: the right edge's colour */
-    for (int j = 0; j < rows; j++, dst += stride) {
+    for (int j = 0; j < rows; j++, dst = RT_PX(dst, stride)) {
         const int32_t *e = q; /* the row's ends: l in e[0..2], r in e[3..5] */
         if (j > 0 && j == h)
             e = q + 6;
@@ -186,9 +185,9 @@ void ss_fill(uint32_t *dst, int stride, int w, int h, int cols, int rows,
             ss_row(dst, inner, v0, v1, v2, ss_mul(e[3] - e[0], sx) * 255,
                    ss_mul(e[4] - e[1], sx) * 255, ss_mul(e[5] - e[2], sx) * 255);
         else
-            dst[0] = ss_pack(v0, v1, v2);
+            rt_px_set(dst, ss_pack(v0, v1, v2));
         if (right)
-            dst[w] = ss_pack(SS_V(e[3]), SS_V(e[4]), SS_V(e[5]));
+            rt_px_set(RT_PX(dst, w), ss_pack(SS_V(e[3]), SS_V(e[4]), SS_V(e[5])));
     }
 }
 
@@ -201,5 +200,5 @@ void rt_interpolate(uint32_t *dst, int stride, int w, int h, int cols, int rows,
     for (int i = 0; i < 4; i++)
         c[i] = v3(r_clamp(c[i].x, 0, R_ONE), r_clamp(c[i].y, 0, R_ONE), r_clamp(c[i].z, 0, R_ONE));
     const rt_color *const k[4] = {&c[0], &c[1], &c[2], &c[3]};
-    ss_fill(dst, stride, w, h, cols, rows, k);
+    ss_fill((rt_px *)dst, stride, w, h, cols, rows, k);
 }

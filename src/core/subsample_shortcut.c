@@ -95,8 +95,8 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
     }
     /* tone 0 into the frame, tone 1 aside (a split square's pixels are all written again by its
      * parts); each pixel then takes its own cell's */
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    uint32_t other[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * c->stride + x0);
+    rt_px other[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1) * RT_PX_N];
     for (int t = 0; t < 2; t++) {
         const rt_color *kc[4];
         for (int i = 0; i < 4; i++) {
@@ -136,7 +136,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
             const int mrow = j<rows, iend = d> 1 ? w : cols - 1;
             uint8_t *qrow = &cid[j * cs];
             const rt_sample *prow = sm + j * c->lstride;
-            uint32_t *drow = dst + (long)j * c->stride;
+            rt_px *drow = RT_PX(dst, (long)j * c->stride);
             const int step = d << fine;
             for (int i = fine ? d : 0; i <= iend; i += step) {
                 const int mine = mrow && i < cols;
@@ -145,7 +145,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
                 if (pt->nhits) { /* a corner, or a point on the top or left edge */
                     *q = pt->hits[0].object == id ? pt->cell : 0;
                     if (mine)
-                        drow[i] = ss_pixel(&pt->color);
+                        rt_px_set(RT_PX(drow, i), ss_pixel(&pt->color));
                     continue;
                 }
                 int cell = 0;
@@ -160,7 +160,7 @@ __attribute__((noinline)) int ss_cells(ss_ctx *c, const rt_sample *sm, int x0, i
                     cell = ss_cell_at(c, m, id, x0 + i, y0 + j);
                 *q = (uint8_t)cell;
                 if (mine && cell && rt_cell_tone((uint8_t)cell))
-                    drow[i] = other[j * cs + i];
+                    rt_px_set(RT_PX(drow, i), rt_px_get(RT_PX(other, j * cs + i)));
             }
         }
     return 1;
@@ -221,17 +221,17 @@ __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_
     const rt_material *m = &c->scene->materials[c->scene->objects[id].material];
     const rt_params *p = c->params;
     const real tmax = r_muli(R_SCENE_MAX, 2);
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    uint32_t half_a[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1)];
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * c->stride + x0);
+    rt_px half_a[(RT_GRID_BUILD_MAX + 1) * (RT_GRID_BUILD_MAX + 1) * RT_PX_N];
     ss_fill(half_a, cs, w, h, cols, rows, ka);
     ss_fill(dst, c->stride, w, h, cols, rows, kb);
-    for (int j = 0; j < rows; j++, dst += c->stride)
+    for (int j = 0; j < rows; j++, dst = RT_PX(dst, c->stride))
         for (int i = 0; i < cols; i++) {
             const rt_sample *pt = sm + j * c->lstride + i;
             vec3 at;
             real t;
             if (pt->nhits) { /* a corner, or a point a neighbour traced */
-                dst[i] = ss_pixel(&pt->color);
+                rt_px_set(RT_PX(dst, i), ss_pixel(&pt->color));
                 continue;
             }
             c->stats->noise_pixels++;
@@ -244,15 +244,15 @@ __attribute__((noinline)) int ss_noise(ss_ctx *c, const rt_sample *sm, const rt_
             const rt_color b = rt_texture_color(m, at, p->octaves, fp, c->stats, &cell);
             const uint32_t bq[3] = {(uint32_t)r_unit_to_q16(b.x), (uint32_t)r_unit_to_q16(b.y),
                                     (uint32_t)r_unit_to_q16(b.z)};
+            const uint32_t ha = rt_px_get(RT_PX(half_a, j * cs + i)), bb = rt_px_get(RT_PX(dst, i));
             uint32_t px = 0;
             for (int ch = 0, sh = 16; ch < 3; ch++, sh -= 8) {
                 /* b (Q16.16) x A (Q15: 2 byte / 255 as byte x 257) + B (Q16.16) */
-                const int32_t v =
-                    (int32_t)((bq[ch] * ((half_a[j * cs + i] >> sh & 255) * 257) + 0x4000u) >> 15) +
-                    (int32_t)(dst[i] >> sh & 255) * 257;
+                const int32_t v = (int32_t)((bq[ch] * ((ha >> sh & 255) * 257) + 0x4000u) >> 15) +
+                    (int32_t)(bb >> sh & 255) * 257;
                 px |= (uint32_t)SS_V(v < 65536 ? v : 65536) >> 16 << sh;
             }
-            dst[i] = px;
+            rt_px_set(RT_PX(dst, i), px);
         }
     return 1;
 }
@@ -369,15 +369,15 @@ __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const k[4], 
         if (ss_spread(kd[j], c->thr8 * 257))
             return 0;
     const int cs = SS_SHADOW_MAX;
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * c->stride + x0;
-    uint32_t lit_px[SS_SHADOW_MAX * SS_SHADOW_MAX];
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * c->stride + x0);
+    rt_px lit_px[SS_SHADOW_MAX * SS_SHADOW_MAX * RT_PX_N];
     ss_fill(dst, c->stride, w, h, w, h, kd[0]);
     ss_fill(lit_px, cs, w, h, w, h, kd[1]);
-    for (int j = 0; j < h; j++, dst += c->stride)
+    for (int j = 0; j < h; j++, dst = RT_PX(dst, c->stride))
         for (int i = 0; i < w; i++) {
             const rt_sample *pt = sm + j * c->lstride + i;
             if (pt->nhits) { /* a corner, or a point a neighbour traced */
-                dst[i] = ss_pixel(&pt->color);
+                rt_px_set(RT_PX(dst, i), ss_pixel(&pt->color));
                 continue;
             }
             c->stats->shadow_pixels++;
@@ -385,7 +385,7 @@ __attribute__((noinline)) int ss_shadow(ss_ctx *c, const rt_sample *const k[4], 
             if (lit < 0)
                 return 0; /* a miss, by rounding */
             if (lit)
-                dst[i] = lit_px[j * cs + i];
+                rt_px_set(RT_PX(dst, i), rt_px_get(RT_PX(lit_px, j * cs + i)));
         }
     return 1;
 }
@@ -414,14 +414,14 @@ __attribute__((cold, noinline)) int ss_centre(ss_ctx *c, rt_sample *sm, const rt
     if (!rt_centre_smooth(k, mid, c->thr8 / 2))
         return 0;
     c->stats->contrib_kept++;
-    uint32_t *dst = c->pixels + (long)(y0 - c->py0) * stride + x0;
+    rt_px *dst = RT_PX(c->pixels, (long)(y0 - c->py0) * stride + x0);
     const rt_color *const kc[4] = {&k[0]->color, &k[1]->color, &k[2]->color, &k[3]->color};
     ss_fill(dst, stride, 2, 2, 2, 2, kc);
-    dst[stride + 1] = ss_pixel(&mid->color);
+    rt_px_set(RT_PX(dst, stride + 1), ss_pixel(&mid->color));
     if (sm[1].nhits)
-        dst[1] = ss_pixel(&sm[1].color);
+        rt_px_set(RT_PX(dst, 1), ss_pixel(&sm[1].color));
     if (sm[ls].nhits)
-        dst[stride] = ss_pixel(&sm[ls].color);
+        rt_px_set(RT_PX(dst, stride), ss_pixel(&sm[ls].color));
     mid->nhits = 0;
     return 1;
 }

@@ -192,11 +192,13 @@ static inline __attribute__((always_inline)) uint8_t trace_light(trace_ctx *c, t
 #define TRACE_RAY_TAKE \
     const vec3 org = *org_at; \
     const dir3 d = *d_at
+#define TRACE_RAY_PASS org_at, d_at
 #else
 #define TRACE_RAY_ARG(x) (x)
 #define TRACE_RAY_NEW(T, v) (v)
 #define TRACE_RAY_PARAMS vec3 org, dir3 d
 #define TRACE_RAY_TAKE (void)0
+#define TRACE_RAY_PASS org, d
 #endif
 
 static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight, real travelled,
@@ -261,16 +263,19 @@ static inline rt_color trace_secondary(trace_ctx *c, const trace_hit *h, real we
     return col;
 }
 
-/* Colour seen along the ray (org, d) at recursion level `level` (its depth left is
- * c->depth - level); `weight` is this ray's share of the pixel, `travelled` the length of its
- * path from the eye to org, `from` where it leaves from (rt_nearest_from: a sphere's hit, or a
- * plane it leaves by mirroring off its front; -1 for any other ray). */
-static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight, real travelled,
-                          int from)
+/* trace_ray's nearest hit and shading of the ray (org, d) at recursion level `level` (its depth
+ * left is c->depth - level), its node recorded: its colour into *col; 1 when the hit casts
+ * secondary rays, with *h the hit and *travelled the path's length to it (trace_secondary's
+ * input), else 0. */
+static inline __attribute__((always_inline)) int trace_shade(trace_ctx *c, TRACE_RAY_PARAMS,
+                                                             int level, real weight,
+                                                             real *travelled_at, int from,
+                                                             trace_hit *h, rt_color *col_at)
 {
     TRACE_RAY_TAKE;
     const rt_scene *s = c->scene;
     const int depth = c->depth - level;
+    real travelled = *travelled_at;
     real t;
     int id;
     if (level > 0 || !c->eye_prepared)
@@ -283,13 +288,13 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
     if (id < 0) {
         trace_record(c, RT_NO_OBJECT, level,
                      weight == R_ONE ? s->background : c3_scale_p(s->background, weight));
-        return s->background;
+        *col_at = s->background;
+        return 0;
     }
     const rt_object *o = &s->objects[id];
     const rt_material *m = &s->materials[o->material];
     /* The hit as trace_light sees it, formed in place. */
-    trace_hit h;
-    const vec3 p = h.p = v3_along_in(org, d, t);
+    const vec3 p = h->p = v3_along_in(org, d, t);
     dir3 n = o->kind == RT_PLANE ? o->normal : rt_sphere_normal(o, &p); /* rt_shapes' normal */
     int inside = 0;
     unit dn = d3_dot(d, n);
@@ -298,14 +303,14 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         dn = u_neg(dn);
         inside = 1;
     }
-    h.n = n;
-    h.d = d;
-    h.dn = dn;
-    h.m = m;
-    h.id = id;
-    h.inside = inside;
+    h->n = n;
+    h->d = d;
+    h->dn = dn;
+    h->m = m;
+    h->id = id;
+    h->inside = inside;
     /* Secondary rays leave from just above (or, refracted, just below) the surface. */
-    h.p_out = v3_along_in(p, n, R_EPS_OFFSET);
+    h->p_out = v3_along_in(p, n, R_EPS_OFFSET);
 
     uint8_t cell = 0;
     /* path length from the eye, for the noise footprint: capped (beyond it a pixel covers more
@@ -337,14 +342,14 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
         col = base.x == m->diffuse.x && base.y == m->diffuse.y && base.z == m->diffuse.z
             ? m->ambient_term
             : c3_scale_p(c3_mul_p(base, s->ambient), m->ambient);
-        h.base = base;
+        h->base = base;
         for (int i = 0; i < s->nlights; i++)
-            lights |= (unsigned)trace_light(c, &h, i, &col) << (2 * i);
+            lights |= (unsigned)trace_light(c, h, i, &col) << (2 * i);
         if (level == 0 && c->alt && m->tex.active) {
             if (cell && (s->cull.plane_set >> id & 1))
-                trace_alt_mid(c, &h, lights, 0); /* a plane with a two-tone checker */
+                trace_alt_mid(c, h, lights, 0); /* a plane with a two-tone checker */
             else if (rt_scene_has(s, RT_FX_NOISE) && m->tex.kind != RT_TEX_CHECKER)
-                trace_alt_mid(c, &h, lights, 1); /* a noise texture */
+                trace_alt_mid(c, h, lights, 1); /* a noise texture */
         }
     }
     if (level == 0)
@@ -359,12 +364,103 @@ static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight
      * (fixed/real_fixed.h). Only an open plane can be hit outside the cube, so far away that
      * what it mirrors is below a pixel. A material that neither reflects nor transmits casts
      * neither ray. */
-    if (depth > 0 && rt_scene_has(s, RT_FX_REFLECT) &&
+    *col_at = col;
+    *travelled_at = travelled;
+    return depth > 0 && rt_scene_has(s, RT_FX_REFLECT) &&
         (m->reflect > 0 || (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0)) &&
-        v3_within(p, R_SCENE_MAX))
+        v3_within(p, R_SCENE_MAX);
+}
+
+#if !defined(__ARM_ARCH_6M__)
+/* Colour seen along the ray (org, d) at recursion level `level` (its depth left is
+ * c->depth - level); `weight` is this ray's share of the pixel, `travelled` the length of its
+ * path from the eye to org, `from` where it leaves from (rt_nearest_from: a sphere's hit, or a
+ * plane it leaves by mirroring off its front; -1 for any other ray). */
+static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight, real travelled,
+                          int from)
+{
+    trace_hit h;
+    rt_color col;
+    if (trace_shade(c, TRACE_RAY_PASS, level, weight, &travelled, from, &h, &col))
         col = trace_secondary(c, &h, weight, level, travelled, col);
     return col;
 }
+#else
+/* ARMv6-M (the Cortex-M0, 16 KiB of RAM): the same rays, the same order, with a smaller frame in
+ * the recursion. Inlined, the shading's and the secondary rays' temporaries in eight low registers
+ * took trace_ray's frame to 464 bytes, held by every level; here trace_shade_rays, out of line,
+ * shades the hit and works out the secondary rays (trace_secondary's) into a trace_rays, and only
+ * that stays on the stack while they are traced. */
+typedef struct trace_rays {
+    vec3 p_in, p_out;   /* where the refracted and the reflected ray leave from */
+    dir3 rd, rr;        /* their directions */
+    real wt, wr;        /* their weights in the pixel */
+    real transmit, kr;  /* their factors in the hit's colour */
+    int from_t, from_r; /* trace_ray's `from` for each */
+    int cast_t, cast_r; /* 1: the ray is traced */
+} trace_rays;
+
+static __attribute__((noinline)) int trace_shade_rays(trace_ctx *c, TRACE_RAY_PARAMS, int level,
+                                                      real weight, real *travelled, int from,
+                                                      trace_rays *r, rt_color *col)
+{
+    trace_hit hit;
+    const trace_hit *h = &hit;
+    if (!trace_shade(c, TRACE_RAY_PASS, level, weight, travelled, from, &hit, col))
+        return 0;
+    const rt_scene *s = c->scene;
+    const rt_material *m = h->m;
+    const dir3 d = h->d, n = h->n;
+    const int inside = h->inside;
+    const int sphere = s->objects[h->id].kind == RT_SPHERE;
+    real kr = m->reflect;
+    unit dk = inside ? d3_dot(d, n) : h->dn;
+    r->cast_t = r->cast_r = 0;
+    if (rt_scene_has(s, RT_FX_REFRACT) && m->transmit > 0) {
+        real eta = inside ? m->ior : m->ior_inv;
+        if (d3_refract_k(d, n, dk, eta, &r->rd)) {
+            real wt = r_mul_c(weight, m->transmit);
+            if (wt >= c->min_contrib) { /* adaptive recursion control */
+                c->stats->rays_refract++;
+                r->cast_t = 1;
+                r->wt = wt;
+                r->transmit = m->transmit;
+                r->p_in = v3_along_in(h->p, n, r_neg(R_EPS_OFFSET));
+                r->from_t = sphere ? 2 * h->id + !inside : -1;
+            }
+        } else {
+            kr = r_add(kr, m->transmit); /* total internal reflection */
+        }
+    }
+    real wr = r_mul_c(weight, kr);
+    if (kr > 0 && wr >= c->min_contrib) {
+        c->stats->rays_reflect++;
+        r->cast_r = 1;
+        r->wr = wr;
+        r->kr = kr;
+        r->p_out = h->p_out;
+        r->rr = d3_reflect_k(d, n, dk);
+        r->from_r = sphere ? 2 * h->id + inside : !inside && !s->cull.forced ? 2 * h->id : -1;
+    }
+    return 1;
+}
+
+static rt_color trace_ray(trace_ctx *c, TRACE_RAY_PARAMS, int level, real weight, real travelled,
+                          int from)
+{
+    trace_rays r;
+    rt_color col;
+    if (trace_shade_rays(c, TRACE_RAY_PASS, level, weight, &travelled, from, &r, &col)) {
+        if (r.cast_t)
+            col = c3_madd_p(col, trace_ray(c, &r.p_in, &r.rd, level + 1, r.wt, travelled, r.from_t),
+                            r.transmit);
+        if (r.cast_r)
+            col = c3_madd_p(
+                col, trace_ray(c, &r.p_out, &r.rr, level + 1, r.wr, travelled, r.from_r), r.kr);
+    }
+    return col;
+}
+#endif
 
 __attribute__((cold)) int rt_light_term(const rt_scene *s, rt_stats *st, rt_hit *h, int i,
                                         rt_color *term)
