@@ -125,9 +125,8 @@ kept=""
   echo "ARM926's; sending the bands to the OLED is not counted (docs/m3.md)."
   echo
   echo "\\*\\*\\* Cortex-M0 fps: **at the nRF51822's $M0_MHZ MHz / at $M0_FAST_MHZ MHz (an RP2040-class"
-  echo "clock; the RP2040's M0+ has its own, slightly faster, table)**: the same frames at grid 8, the default"
-  echo "(grid 8's band and working storage do not fit its 16 KiB of RAM), with no long multiply, no"
-  echo "divide and no CLZ (docs/m0.md)."
+  echo "clock; the RP2040's M0+ has its own, slightly faster, table)**: the same frames at the default"
+  echo "settings, in 16 KiB of RAM, with no long multiply, no divide and no CLZ (docs/m0.md)."
   echo
   echo "Desktop: the tracer's own time per frame (\`render --time T --size S --threads N --stats\`,"
   echo "its \`ms=\`: rendering, without writing the file), default adaptive mode, the intro every"
