@@ -9,9 +9,21 @@
 # ` cycles=C` after each `frame=N instructions=M` line and after the `frames=K mean=M` and
 # `worst=M` lines (the cycles' own mean and worst), then a `cycles:` line with the frames' cycles
 # per instruction and the estimated frames per second at the board's clock, CYCLES_MHZ (a list).
-# die is the caller's.
+# With CYCLES=0 (and no QEMU_CYCLES_OUT) no plugin is loaded and cycles_merge prints the log as it
+# is, instructions only: for runs that check frames, not cycles (QEMU runs faster without the
+# plugin's per-instruction callbacks). die is the caller's.
 cycles_plugin() {
   local elf=$1 cpu=$2 so=build/arm/qemu_profile.so s a
+  cycles_on=1
+  case "${CYCLES:-1}" in
+    0) [ -n "${QEMU_CYCLES_OUT:-}" ] || cycles_on=0 ;;
+    1) ;;
+    *) die "CYCLES must be 0 (no cycle estimate) or 1, not '$CYCLES'" ;;
+  esac
+  if [ "$cycles_on" = 0 ]; then
+    cycles_out="" plugin=()
+    return
+  fi
   [ -f "$so" ] || die "$so is missing: run make $so (make arm and make m3 build it)"
   command -v arm-none-eabi-nm >/dev/null || die "arm-none-eabi-nm is missing: run ./setup.sh --arm"
   a=$(arm-none-eabi-nm "$elf" | awk '$3 == "rt_render_band_into" && !s { s = "0x" $1 }
@@ -32,6 +44,10 @@ cycles_plugin() {
 
 cycles_merge() {
   local log=$1
+  if [ "$cycles_on" = 0 ]; then
+    cat "$log"
+    return
+  fi
   if [ ! -s "$cycles_out" ]; then
     cat "$log"
     echo "qemu.sh: error: the cycle plugin wrote nothing ($cycles_out)" >&2
