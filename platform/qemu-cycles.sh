@@ -1,7 +1,7 @@
-# qemu-cycles.sh: the cycle estimate shared by platform/arm/qemu.sh and platform/m3/qemu.sh (sourced, not run): loads the timing plugin and adds its cycles to the board's frame lines.
+# qemu-cycles.sh: the cycle estimate shared by the boards' platform/arm/qemu.sh, platform/m3/qemu.sh and platform/m0/qemu.sh (sourced, not run): loads the timing plugin and adds its cycles to the board's frame lines.
 #
 # cycles_plugin ELF CPU sets the array `plugin` to the -plugin arguments of build/arm/qemu_profile.so
-# (platform/arm/qemu_profile.c) for that image and core (arm926 or m3): the window from
+# (platform/arm/qemu_profile.c) for that image and core (arm926, m3 or m0): the window from
 # rt_render_band_into's entry to plat_time_ns's (the band's rendering, as the board times it),
 # one record a frame at plat_band_begin, the plugin's counts into the file `cycles_out`
 # (QEMU_CYCLES_OUT if set, else a temporary file), and QEMU_CYCLES_OPTS (comma-separated plugin

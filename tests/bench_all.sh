@@ -75,7 +75,7 @@ cyc() {
   local m w
   m=$(sed -n 's/^frames=[0-9]* mean=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
   w=$(sed -n 's/^worst=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
-  [ -n "$m" ] && [ -n "$w" ] || die "no cycles in $1"
+  if [ -z "$m" ] || [ -z "$w" ]; then die "no cycles in $1"; fi
   echo "$m $w"
 }
 cycles="fixed $(cyc build/bench/qemu-fixed.log) float $(cyc build/bench/qemu-float.log) m3 $(cyc build/bench/qemu-m3.log) m0 $(cyc build/bench/qemu-m0.log)"
