@@ -1,7 +1,7 @@
-# qemu-cycles.sh: the cycle estimate shared by platform/arm/qemu.sh and platform/m3/qemu.sh (sourced, not run): loads the timing plugin and adds its cycles to the board's frame lines.
+# qemu-cycles.sh: the cycle estimate shared by the boards' platform/arm/qemu.sh, platform/m3/qemu.sh and platform/m0/qemu.sh (sourced, not run): loads the timing plugin and adds its cycles to the board's frame lines.
 #
 # cycles_plugin ELF CPU sets the array `plugin` to the -plugin arguments of build/arm/qemu_profile.so
-# (platform/arm/qemu_profile.c) for that image and core (arm926 or m3): the window from
+# (platform/arm/qemu_profile.c) for that image and core (arm926, m3 or m0): the window from
 # rt_render_band_into's entry to plat_time_ns's (the band's rendering, as the board times it),
 # one record a frame at plat_band_begin, the plugin's counts into the file `cycles_out`
 # (QEMU_CYCLES_OUT if set, else a temporary file), and QEMU_CYCLES_OPTS (comma-separated plugin
@@ -9,9 +9,21 @@
 # ` cycles=C` after each `frame=N instructions=M` line and after the `frames=K mean=M` and
 # `worst=M` lines (the cycles' own mean and worst), then a `cycles:` line with the frames' cycles
 # per instruction and the estimated frames per second at the board's clock, CYCLES_MHZ (a list).
-# die is the caller's.
+# With CYCLES=0 (and no QEMU_CYCLES_OUT) no plugin is loaded and cycles_merge prints the log as it
+# is, instructions only: for runs that check frames, not cycles (QEMU runs faster without the
+# plugin's per-instruction callbacks). die is the caller's.
 cycles_plugin() {
   local elf=$1 cpu=$2 so=build/arm/qemu_profile.so s a
+  cycles_on=1
+  case "${CYCLES:-1}" in
+    0) [ -n "${QEMU_CYCLES_OUT:-}" ] || cycles_on=0 ;;
+    1) ;;
+    *) die "CYCLES must be 0 (no cycle estimate) or 1, not '$CYCLES'" ;;
+  esac
+  if [ "$cycles_on" = 0 ]; then
+    cycles_out="" plugin=()
+    return
+  fi
   [ -f "$so" ] || die "$so is missing: run make $so (make arm and make m3 build it)"
   command -v arm-none-eabi-nm >/dev/null || die "arm-none-eabi-nm is missing: run ./setup.sh --arm"
   a=$(arm-none-eabi-nm "$elf" | awk '$3 == "rt_render_band_into" && !s { s = "0x" $1 }
@@ -32,6 +44,10 @@ cycles_plugin() {
 
 cycles_merge() {
   local log=$1
+  if [ "$cycles_on" = 0 ]; then
+    cat "$log"
+    return
+  fi
   if [ ! -s "$cycles_out" ]; then
     cat "$log"
     echo "qemu.sh: error: the cycle plugin wrote nothing ($cycles_out)" >&2

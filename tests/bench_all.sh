@@ -12,8 +12,9 @@
 # The boards' fps are the cycle model's (the boards' qemu.sh print each frame's estimated cycles,
 # docs/arm.md, Cycle model): cycles divided by the clock, with the one-instruction-a-cycle figure,
 # an upper bound, in brackets.
-# Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); about 80 s
-# on the 2-core build machine, most of it the soft-float image under QEMU. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
+# Defaults: STEP_S=2 (25 frames), ROUNDS=3, QEMU_FRAMES="0 1200 24" (51 frames); 16 minutes
+# on the loaded 2-core build machine, most of it the soft-float image under QEMU with the cycle
+# plugin. QUICK=1: 3 desktop frames in 1 round and 2 ARM frames, a smoke run of a few
 # seconds (make test). Progress goes to standard error; the file is also printed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -75,7 +76,7 @@ cyc() {
   local m w
   m=$(sed -n 's/^frames=[0-9]* mean=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
   w=$(sed -n 's/^worst=[0-9]* cycles=\([0-9]*\)$/\1/p' "$1")
-  [ -n "$m" ] && [ -n "$w" ] || die "no cycles in $1"
+  if [ -z "$m" ] || [ -z "$w" ]; then die "no cycles in $1"; fi
   echo "$m $w"
 }
 cycles="fixed $(cyc build/bench/qemu-fixed.log) float $(cyc build/bench/qemu-float.log) m3 $(cyc build/bench/qemu-m3.log) m0 $(cyc build/bench/qemu-m0.log)"
@@ -142,7 +143,7 @@ kept=""
   echo "## How to reproduce"
   echo
   echo '```sh'
-  echo "make bench                        # builds what is missing, then writes this file (about 70-80 s on the 2-core build machine)"
+  echo "make bench                        # builds what is missing, then writes this file (16 minutes on the loaded 2-core build machine, most of it the soft-float image under the cycle plugin)"
   echo "QUICK=1 tests/bench_all.sh        # smoke run in seconds: build/bench/bench-quick.md (make test runs it)"
   echo "ROUNDS=1 STEP_S=4 QEMU_FRAMES=\"0 1200 48\" tests/bench_all.sh -o /tmp/bench.md   # shorter"
   echo "tests/bench_intro.sh 640x480 3 2  # the desktop part alone, any sizes (comma-separated)"

@@ -93,7 +93,8 @@ board_within() {
 # board_two_runs LABEL LOG PPM-OF HOST DESC COMMAND...: `COMMAND FRAMES...` renders the frames
 # of the array FRAMES on the board, twice (logs $T/LOG-1.log and -2.log); each frame must be byte
 # for byte the host's ($T/HOST-N.ppm, rendered by DESC), in both runs, and the two runs must count
-# the same instructions for every frame. `PPM-OF N` prints where the board wrote frame N.
+# the same instructions (and, unless CYCLES=0, estimated cycles) for every frame. `PPM-OF N`
+# prints where the board wrote frame N.
 board_two_runs() {
   local label=$1 log=$2 ppm_of=$3 host=$4 desc=$5 run n same=0
   shift 5
@@ -111,7 +112,7 @@ board_two_runs() {
   [ "$same" -eq ${#FRAMES[@]} ] && pass "$label: frames ${FRAMES[*]} bit-identical to $desc, in both runs"
   if [ "$(grep -c '^frame=' "$T/$log-1.log")" -eq ${#FRAMES[@]} ] &&
      diff <(grep '^frame=' "$T/$log-1.log") <(grep '^frame=' "$T/$log-2.log") >/dev/null; then
-    pass "$label: two runs give identical instruction and cycle counts ($(grep '^frame=' "$T/$log-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
+    pass "$label: two runs give identical instruction$([ "${CYCLES:-1}" = 0 ] || echo " and cycle") counts ($(grep '^frame=' "$T/$log-1.log" | sed 's/.*instructions=//' | tr '\n' ' '))"
   else
     fail "$label: instruction or cycle counts differ between two runs"
   fi

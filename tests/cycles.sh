@@ -135,7 +135,8 @@ check m0 calls "" 6 23 0 "BL 4 + PUSH 2 regs 3 + POP with the PC 4 + 2 + BL 4 + 
 # clock, each rounded down to a step, so it is within one step either side of the true count:
 # with B bands a frame (the plugin's windows over its frames: 1 on the ARM926, 8 on the M3, 16 on
 # the M0, whose clock steps 62.5 instructions), all
-# frames' differences lie within 2 B steps of each other, and below 100 B.
+# frames' differences lie within 2 B steps of each other, and below 100 B. A second run gives the
+# same instructions and cycles for every frame (the estimate repeats exactly).
 intro() { # BOARD SCRIPT STEP ARGS...
   local board=$1 script=$2 step=$3
   shift 3
@@ -154,6 +155,13 @@ intro() { # BOARD SCRIPT STEP ARGS...
     fi
     if ! grep -q '^cycles: [0-9.]* a instruction' "$T/$board-intro.log" || ! grep -q '^worst=[0-9]* cycles=[0-9]*$' "$T/$board-intro.log"; then
       fail "cycles: $board bench prints no cycles line: $(tail -3 "$T/$board-intro.log" | tr '\n' ' ')"
+    fi
+    if CYCLES=1 "$script" bench "$@" >"$T/$board-intro-2.log" 2>&1 &&
+       [ "$(grep -c '^frame=[0-9]* instructions=[0-9]* cycles=[0-9]*$' "$T/$board-intro.log")" -gt 0 ] &&
+       diff <(grep '^frame=' "$T/$board-intro.log") <(grep '^frame=' "$T/$board-intro-2.log") >/dev/null; then
+      pass "cycles: $board intro frames $*: a second run gives the same instructions and cycles for every frame ($(grep '^frame=' "$T/$board-intro.log" | sed 's/.*cycles=//' | tr '\n' ' '))"
+    else
+      fail "cycles: $board intro frames $*: the second run's instructions or cycles differ: $(diff <(grep '^frame=' "$T/$board-intro.log") <(grep '^frame=' "$T/$board-intro-2.log") | head -2 | tr '\n' ' ')"
     fi
   else
     fail "cycles: $board bench $*: $(tail -2 "$T/$board-intro.log" | tr '\n' ' ')"

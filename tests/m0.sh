@@ -7,6 +7,9 @@
 # with rt-fixed render --size 128x64 (the M3's frames).
 set -u
 cd "$(dirname "$0")/.." || exit 1
+# These runs check frames and instruction counts: no cycle estimate (its plugin makes QEMU several
+# times slower); tests/cycles.sh checks the cycles. CYCLES=1 in the environment keeps it.
+export CYCLES=${CYCLES:-0}
 
 . tests/lib.sh
 . tests/board.sh

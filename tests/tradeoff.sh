@@ -17,9 +17,9 @@
 # and its Pareto front are by the estimated time a frame at ARM_MHZ (default 200) MHz, cycles
 # divided by the clock. Grids 2 and 16 do not fit the board's RAM (n/a). Without qemu-system-arm
 # the ARM columns stay empty, with a note (ARM=0 does the same).
-# Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 42 configurations, about
-# 3 minutes on the 2-core build machine (host timing 35 s, ARM926 2.5 minutes, mostly the
-# soft-float image). QUICK=1: two configurations on one frame, one round, the board's fixed
+# Defaults: TIMES="4 14 25 35 44" (on whole frames, 25 fps), ROUNDS=5: 42 configurations, 33
+# minutes on the 2-core build machine loaded 5 deep (host timing 4 minutes, ARM926 29 minutes under
+# the cycle plugin, mostly the soft-float image). QUICK=1: two configurations on one frame, one round, the board's fixed
 # default as the base (make test's smoke run, a few seconds).
 # Progress goes to standard error; the table is also printed.
 set -euo pipefail

@@ -38,7 +38,7 @@ case "${1:-}" in fixed|float|fixed16|m3|m0) real=$1; shift ;; esac
 top=${PROFILE_TOP:-25}
 case "$top" in ''|*[!0-9]*|0) die "PROFILE_TOP must be a whole number, 1 or more, not '$top'" ;; esac
 case "$real" in
-  m3|m0) elf=build/$real/intro-fixed.elf run=(platform/$real/qemu.sh frames) size=128x64 ;;
+  m3|m0) elf=build/$real/intro-fixed.elf run=("platform/$real/qemu.sh" frames) size=128x64 ;;
   *) elf=build/arm/intro-$real.elf run=(platform/arm/qemu.sh frames "$real") size=320x240 ;;
 esac
 plugin=build/arm/qemu_profile.so
