@@ -357,8 +357,10 @@ ARM_SMALL_SRCS := src/core/probe.c src/core/prepare.c
 ARM_SMALL_CFLAGS := -Os
 $(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_COLD_SRCS))): ARM_FILE_CFLAGS := $(ARM_COLD_CFLAGS)
 $(foreach r,fixed float fixed16,$(patsubst %.c,$(BUILD)/obj/arm-$(r)/%.o,$(ARM_SMALL_SRCS))): ARM_FILE_CFLAGS := $(ARM_SMALL_CFLAGS)
-# One `FILE FLAGS` line per ARM source built with flags of its own (tests/scene_programs.sh).
+# `defines` and the image's -D flags, then one `FILE FLAGS` line per ARM source built with flags
+# of its own (tests/scene_programs.sh).
 arm-file-flags:
+	@echo 'defines $(filter -D%,$(ARM_CFLAGS))'
 	@$(foreach f,$(ARM_COLD_SRCS),echo '$(f) $(ARM_COLD_CFLAGS)';) $(foreach f,$(ARM_SMALL_SRCS),echo '$(f) $(ARM_SMALL_CFLAGS)';)
 
 # The profiler's TCG plugin for qemu-system-arm (platform/arm/qemu_profile.c): a host library.

@@ -56,11 +56,15 @@ ARM_ARCH="-mcpu=arm926ej-s -marm -mfloat-abi=soft"
 ARM_LIMIT=65536
 AO=$B/obj/arm-fixed
 declare -A ARM_FILE_FLAGS=()
+ARM_DEFS=
 load_arm_flags() {
   local lines f flags
   lines=$(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory arm-file-flags) || return 1
   while read -r f flags; do
-    [ -n "$f" ] && ARM_FILE_FLAGS[$f]=$flags
+    case $f in
+      defines) ARM_DEFS=$flags ;; # the whole image's (ARM_CFLAGS' -D): the same structures as intro.o's
+      ?*) ARM_FILE_FLAGS[$f]=$flags ;;
+    esac
   done <<<"$lines"
   [ ${#ARM_FILE_FLAGS[@]} -gt 0 ]
 }
@@ -69,7 +73,7 @@ build_arm() {
   mkdir -p "$1.obj"
   for f in $CORE "$2"; do
     o="$1.obj/arm-$(basename "${f%.c}").o"
-    $ARM_CC ${CFLAGS/-mgeneral-regs-only/} $ARM_ARCH -ffreestanding ${ARM_FILE_FLAGS[$f]:-} $INC -Iplatform -include "$3" \
+    $ARM_CC ${CFLAGS/-mgeneral-regs-only/} $ARM_ARCH -ffreestanding $ARM_DEFS ${ARM_FILE_FLAGS[$f]:-} $INC -Iplatform -include "$3" \
       -c "$f" -o "$o" || return 1
     objs+=("$o")
   done

@@ -46,9 +46,9 @@ typedef struct ss_ctx {
     /* ss_noise_seen: the objects on a noise texture (none where no object of flat_view casts
      * secondary rays), and the objects that show what their secondary rays meet at its scale */
     uint32_t noise_beyond, flat_view;
-    dir3 ray; /* ss_hit_at: the last primary ray's direction */
+    dir3 ray;                         /* ss_hit_at: the last primary ray's direction */
     real half[RT_GRID_BUILD_MAX + 1]; /* half[n] = (n / 2) / n: a probed edge's middle */
-    rt_local loc; /* ss_local's result for the point traced */
+    rt_local loc;                     /* ss_local's result for the point traced */
 } ss_ctx;
 
 /* A square split for its secondary rays whose points' local parts are interpolated (ss_local_ok):
